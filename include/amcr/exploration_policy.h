@@ -1,0 +1,32 @@
+// The feedback policy F (paper 4.3): how a V-particle moves on its own.
+#pragma once
+
+#include "amcr/motion_model.h"
+#include "amcr/particles.h"
+#include "amcr/radial_scan.h"
+#include "amcr/random.h"
+
+namespace amcr
+{
+/// Chooses the control of one V-particle from what it sees.
+class ExplorationPolicy
+{
+public:
+  virtual ~ExplorationPolicy() = default;
+  virtual Control decide(const VParticle& v, const RadialScanner& scanner, Rng& rng) const = 0;
+};
+
+/// The paper's baseline: move forward, reflect at edges (and at the image
+/// border), so the V-particle explores the region it is in.
+class ReflectAtEdgesPolicy : public ExplorationPolicy
+{
+public:
+  /// `step`: forward step, px; `jitter`: largest random turn added at a reflection, rad.
+  ReflectAtEdgesPolicy(double step, double jitter);
+  Control decide(const VParticle& v, const RadialScanner& scanner, Rng& rng) const override;
+
+private:
+  double step_;
+  double jitter_;
+};
+}  // namespace amcr

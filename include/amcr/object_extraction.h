@@ -1,0 +1,45 @@
+// Result extraction (spec "Output"): from each V-particle's M-particles to
+// clusters, and from agreeing V-particles to objects.
+#pragma once
+
+#include <vector>
+
+#include "amcr/affine.h"
+#include "amcr/params.h"
+#include "amcr/particles.h"
+
+namespace amcr
+{
+/// The densest M-cluster of one V-particle.
+struct VParticleCluster
+{
+  int v = -1;              ///< index of the V-particle
+  int prototype = -1;      ///< prototype of the cluster
+  cv::Point2f mean;        ///< cluster mean, table px of that prototype
+  float share = 0.f;       ///< share of the V-particle's M-particles in the cluster
+  Affine image_to_table;   ///< mean A of the cluster's M-particles with a valid A
+  bool has_affine = false;
+};
+
+/// Finds the densest cluster among M-particles [begin, end): the prototype
+/// holding most of them, then a mean shift of `radius` table px started at
+/// the most likely particle there.
+VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
+                                 double radius);
+
+/// V-particles that agree on one object: the same prototype and affines that
+/// map each other's correspondences within `group_tolerance` input px.
+struct ObjectHypothesis
+{
+  int prototype = -1;
+  std::vector<int> members;  ///< indices into the cluster list
+  Affine table_to_image;     ///< fitted to the members' correspondences
+};
+
+/// Groups converged clusters (share >= cluster_min_share), largest share
+/// first; every group of at least `min_members` members becomes a hypothesis
+/// with an affine fitted robustly to all its correspondences.
+std::vector<ObjectHypothesis> groupClusters(const std::vector<VParticle>& v,
+                                            const std::vector<VParticleCluster>& clusters, const Params& params,
+                                            int min_members);
+}  // namespace amcr

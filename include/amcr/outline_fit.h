@@ -1,0 +1,24 @@
+// Verification and refinement of an object hypothesis against the image:
+// the prototype's whole outline, mapped into the input, must lie on edges.
+#pragma once
+
+#include "amcr/affine.h"
+#include "amcr/prototype.h"
+#include "amcr/radial_scan.h"
+
+namespace amcr
+{
+/// Refines a table->image affine so that the prototype's outline lies on
+/// image edges: each pass looks for the strongest edge within `search` px
+/// along every outline point's normal and refits the affine to the points
+/// found (least squares, residuals beyond 2.5x the median dropped).
+/// Returns the input affine when too few edges are found.
+Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
+                     int iterations, double search);
+
+/// Share, in [0, 1], of the outline points that have an image edge within
+/// `tolerance` px along their normal, with the edge polarity the majority of
+/// the outline shows. Points mapped outside the image count as missing.
+double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
+                      double tolerance);
+}  // namespace amcr

@@ -1,0 +1,105 @@
+// Every tunable of Radial-AMCR, with its unit, range and the paper's value.
+// The same names are used in config/amcr.yaml and in the dynamic_reconfigure
+// file; validate() throws ParameterError naming the parameter and its range.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace amcr
+{
+/// How a ray's deviation dw_j enters the likelihood (spec "Observation model").
+enum class LikelihoodForm
+{
+  kPaper,    ///< paper eq. 5: p_outlier + (1 - p_outlier) N(dw; 0, sigma_w^2)
+  kMixture,  ///< normalised: p_outlier / L + (1 - p_outlier) N(dw; 0, sigma_w^2)
+};
+
+/// Where the deviations dw_j are measured.
+enum class DeviationSpace
+{
+  kImage,      ///< prototype points mapped into the input image by A^-1 (input pixels)
+  kPrototype,  ///< input points mapped into the prototype by A, as in the paper
+};
+
+struct Params
+{
+  // Particle counts.
+  int num_v_particles = 60;            ///< V-particles in the input image [1, 5000]; paper 30
+  int m_particles_per_prototype = 60;  ///< M-particles per prototype per V [1, 5000]; paper 60
+
+  // Prototype memory.
+  int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]
+
+  // Radial edge scans in the input image.
+  double max_ray_length = 200.0;  ///< longest ray, input px [10, 4000]
+  double edge_threshold = 40.0;   ///< grey-level step over 2 px that counts as an edge [1, 255]
+  double blur_sigma = 1.0;        ///< Gaussian smoothing before scanning, px [0, 10]
+
+  // Observation model (paper eqs. 5-6).
+  LikelihoodForm likelihood_form = LikelihoodForm::kPaper;
+  DeviationSpace deviation_space = DeviationSpace::kImage;
+  double sigma_w = 5.0;           ///< std. dev. of a ray's deviation, px (0, 1000]; paper 10
+  double p_outlier = 0.1;         ///< probability that a ray is an outlier [0, 1]; paper 0.1
+  double p_invalid = 0.1;         ///< probability of an invalid ray [0, 1]; paper 0.1
+  double min_triangle_area = 20;  ///< smaller affine triangles are degenerate, px^2 [0, 1e6]
+  double max_affine_scale = 8.0;  ///< largest accepted scale ratio of A (either way) [1, 100]
+
+  // Motion model (paper 4.2) and exploration policy (paper 4.3).
+  double v_step = 4.0;                   ///< forward step of a V-particle per iteration, input px [0, 100]
+  double motion_noise_translation = 1.5; ///< M-particle translation noise, prototype px [0, 100]
+  double motion_noise_rotation = 0.08;   ///< M-particle rotation noise, rad [0, 3.15]
+  double reflection_jitter = 0.3;        ///< random turn added at a reflection, rad [0, 3.15]
+
+  // Resampling (paper 3.6).
+  int v_resample_interval = 10;     ///< w: V-particles are resampled every w iterations [1, 1000]; paper 10
+  double v_reseed_fraction = 0.2;   ///< share of V-particles re-seeded at V-resampling [0, 1]
+  double m_reseed_fraction = 0.02;  ///< share of M-particles re-seeded uniformly per iteration [0, 1]
+  double injection_fraction = 0.1;  ///< share of M-particles placed at leading hypotheses [0, 1]
+  int seed_enclosure_rays = 6;      ///< a new V-particle wants this many of 8 rays to hit an edge [0, 8]
+  int seed_attempts = 10;           ///< tries to find such a place before taking any [1, 1000]
+
+  // Result extraction.
+  double cluster_radius = 6.0;        ///< M-cluster radius, prototype px [0.5, 100]
+  double cluster_min_share = 0.3;     ///< share of a V's M-particles its cluster needs [0, 1]
+  double group_tolerance = 8.0;       ///< V-particles agree when they map within this, input px [0.5, 200]
+  int min_support = 3;                ///< V-particles an object needs [1, 5000]
+  int refine_iterations = 5;          ///< outline-to-edge refinement passes of the affine [0, 100]
+  double refine_search = 6.0;         ///< search along the outline normal for an edge, input px [0, 100]
+  double decision_threshold = 0.75;   ///< smallest score reported [0, 1]
+
+  std::uint64_t seed = 0;  ///< seed of the recognizer's random generator
+
+  /// Throws ParameterError naming the first parameter out of range.
+  void validate() const;
+};
+
+/// Description of one parameter, for documentation and YAML loading.
+struct ParameterInfo
+{
+  std::string name;
+  std::string unit;
+  double min;
+  double max;
+  std::string description;
+};
+
+/// All numeric parameters, in the order of config/amcr.yaml.
+const std::vector<ParameterInfo>& parameterTable();
+
+/// Reads parameters from a YAML file (cv::FileStorage) over the defaults in
+/// `params`. Unknown keys and values out of range throw ParameterError.
+Params loadParams(const std::string& yaml_path, Params params = Params());
+
+/// Sets one parameter by name from a number, or (likelihood_form,
+/// deviation_space) from a string. Throws ParameterError for an unknown name.
+void setParameter(Params& params, const std::string& name, double value);
+void setParameter(Params& params, const std::string& name, const std::string& value);
+
+/// Reads one numeric parameter by name.
+double getParameter(const Params& params, const std::string& name);
+
+std::string toString(LikelihoodForm form);
+std::string toString(DeviationSpace space);
+}  // namespace amcr

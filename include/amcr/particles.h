@@ -1,0 +1,56 @@
+// Particle state of Radial-AMCR (spec "State"), kept contiguous: the
+// M-particles are a structure of arrays, and the M-particles of V-particle v
+// are the index range [v * per_v, (v + 1) * per_v) (the map R^-1(v)).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "amcr/ray_directions.h"
+
+namespace amcr
+{
+/// A V-particle's measurement z_k: its 8 feature-ray distances (theta + k * 45
+/// deg) in input px, 0 where a ray met no edge.
+struct RaySignature
+{
+  float distance[kFeatureRays] = {0, 0, 0, 0, 0, 0, 0, 0};
+  int valid_rays() const;
+};
+
+/// A V-particle: a pose in the input image plus its evidence record.
+struct VParticle
+{
+  float x = 0.f;      ///< input px
+  float y = 0.f;      ///< input px
+  float theta = 0.f;  ///< heading, rad (x right, y down)
+  /// Sum of log evidence (log of the mean M-particle likelihood) since the
+  /// last V-resampling, and how many iterations it covers.
+  double log_evidence_sum = 0.0;
+  int evidence_count = 0;
+  int age = 0;  ///< iterations since this V-particle was seeded
+  RaySignature rays;  ///< the last measurement
+};
+
+/// All M-particles of all V-particles.
+struct MParticleSet
+{
+  std::vector<float> x;       ///< prototype pose, table px
+  std::vector<float> y;       ///< table px
+  std::vector<float> theta;   ///< rad
+  std::vector<int> prototype; ///< index into the memory
+  /// A: input image -> prototype table, row-major 2x3 (paper: the affine of
+  /// the relational particle (v, m), stored in m).
+  std::array<std::vector<float>, 6> affine;
+  std::vector<std::uint8_t> affine_valid;
+  std::vector<float> log_likelihood;  ///< log p(z_k | m) of the last update
+
+  std::size_t size() const { return x.size(); }
+  void resize(std::size_t n);
+  /// Copies particle `from` onto `to` (either may be in any range).
+  void copy(std::size_t from, std::size_t to);
+  /// Copies particle `from` of `source` onto `to` of this set.
+  void copyFrom(const MParticleSet& source, std::size_t from, std::size_t to);
+};
+}  // namespace amcr

@@ -1,0 +1,101 @@
+// One prototype of the memory: a silhouette normalised to a fixed size, its
+// outline, and the radial-scan lookup table of paper 4.4, so that M-particles
+// never touch prototype pixels.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "amcr/ray_directions.h"
+
+namespace amcr
+{
+/// A point of the prototype's outline with its outward unit normal, in
+/// table coordinates.
+struct OutlinePoint
+{
+  cv::Point2f position;
+  cv::Point2f normal;
+};
+
+class Prototype
+{
+public:
+  /// Distance stored for "no edge on this ray".
+  static constexpr std::uint8_t kNoEdge = 255;
+  /// Table distances are stored in units of this many px (0.5 px).
+  static constexpr float kDistanceUnit = 0.5f;
+
+  /// Builds the prototype from a silhouette image of either polarity (the
+  /// background is the colour that dominates the image border). `size` is
+  /// the longer side of the shape in the table, px. The table holds what a
+  /// RadialScanner with `edge_threshold` finds in the mask smoothed by
+  /// `blur_sigma` (scanImage()). Throws MemoryError when the image is empty
+  /// or holds no shape (no edges).
+  Prototype(const std::string& label, const cv::Mat& image, int size, double edge_threshold, double blur_sigma = 1.0);
+
+  /// The smoothed mask the table was scanned in.
+  cv::Mat scanImage() const;
+
+  const std::string& label() const { return label_; }
+
+  /// Table size (the normalised image with its margin).
+  int width() const { return mask_.cols; }
+  int height() const { return mask_.rows; }
+
+  /// The normalised silhouette, CV_8UC1, 255 inside the shape.
+  const cv::Mat& mask() const { return mask_; }
+
+  /// Distance, table px, from pixel (x, y) to the first edge in direction bin
+  /// `bin`; negative when no edge. (x, y) must lie inside the table.
+  float distance(int x, int y, int bin) const
+  {
+    const std::uint8_t d = table_[(static_cast<std::size_t>(y) * mask_.cols + x) * kDirectionBins + bin];
+    return d == kNoEdge ? -1.f : d * kDistanceUnit;
+  }
+
+  /// The kDirectionBins distances at pixel (x, y), raw (kNoEdge or units of kDistanceUnit).
+  const std::uint8_t* rawDistances(int x, int y) const
+  {
+    return &table_[(static_cast<std::size_t>(y) * mask_.cols + x) * kDirectionBins];
+  }
+
+  /// Pixels inside the shape (table coordinates), where M-particles are seeded.
+  const std::vector<cv::Point>& interior() const { return interior_; }
+
+  /// The outline, evenly resampled, table coordinates.
+  const std::vector<OutlinePoint>& outline() const { return outline_; }
+
+  /// Maps the original image's pixel coordinates to table coordinates
+  /// (OpenCV pixel-centre convention), and back.
+  const cv::Matx23d& originalToTable() const { return original_to_table_; }
+  const cv::Matx23d& tableToOriginal() const { return table_to_original_; }
+
+  /// Centre of the shape's bounding box, table px.
+  cv::Point2d centre() const { return {0.5 * (mask_.cols - 1), 0.5 * (mask_.rows - 1)}; }
+
+  /// Size of the original image, px.
+  cv::Size originalSize() const { return original_size_; }
+
+  /// Memory held by the lookup table, bytes.
+  std::size_t tableBytes() const { return table_.size(); }
+
+private:
+  void buildTable(double edge_threshold);
+
+  double blur_sigma_;
+  void buildOutline();
+
+  std::string label_;
+  cv::Mat mask_;
+  std::vector<std::uint8_t> table_;  // [y][x][bin], structure of arrays per pixel
+  std::vector<cv::Point> interior_;
+  std::vector<OutlinePoint> outline_;
+  cv::Matx23d original_to_table_;
+  cv::Matx23d table_to_original_;
+  cv::Size original_size_;
+};
+}  // namespace amcr

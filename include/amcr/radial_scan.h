@@ -1,0 +1,79 @@
+// Radial edge scans (spec "Radial edge scans"): from a point, walk a ray until
+// the first grey-level step above a threshold. Used on the input image by
+// the V-particles and, once, on each prototype to build its lookup table.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace amcr
+{
+/// Result of one ray: the distance to the first edge along the ray, or
+/// invalid when no edge is met within the maximal length or the image.
+struct RayHit
+{
+  bool valid = false;
+  float distance = 0.f;  ///< px from the ray's origin to the edge
+};
+
+/// Scans rays in one smoothed 8-bit grey image. The image is borrowed: it
+/// must outlive the scanner.
+class RadialScanner
+{
+public:
+  /// `smoothed` is CV_8UC1 (already blurred); `threshold` is the grey-level
+  /// difference between the samples 1 px before and 1 px after a point that
+  /// makes it an edge; `max_length` in px.
+  RadialScanner(const cv::Mat& smoothed, double threshold, double max_length);
+
+  /// The same, with a map of free space (CV_32FC1, the image's size): from
+  /// pixel q, no ray step within free_space(q) px reaches the threshold, so
+  /// the scan leaps over it. Used for the prototype lookup tables, where the
+  /// map comes from a distance transform; a scan gives the same hit with or
+  /// without it.
+  RadialScanner(const cv::Mat& smoothed, double threshold, double max_length, const cv::Mat& free_space);
+
+  /// First edge along the ray from (x, y) in direction (dx, dy), |(dx,dy)| = 1.
+  /// The edge is placed at the largest step of the first run of samples above
+  /// the threshold, refined to sub-pixel by a parabola.
+  RayHit scan(float x, float y, float dx, float dy) const;
+
+  /// Convenience: scan at an angle in rad (x right, y down).
+  RayHit scanAngle(float x, float y, double angle) const;
+
+  /// Unit normal of the intensity edge at (x, y) from the image gradient
+  /// (pointing towards increasing grey), or (0, 0) where the gradient is flat.
+  cv::Point2f edgeNormal(float x, float y) const;
+
+  /// Bilinear grey level at (x, y); (x, y) must lie in [0, cols-1] x [0, rows-1].
+  float sample(float x, float y) const;
+
+  /// Whether (x, y) lies where sample() may be called.
+  bool contains(float x, float y) const
+  {
+    return x >= 0.f && y >= 0.f && x <= image_.cols - 1 && y <= image_.rows - 1;
+  }
+
+  double threshold() const { return threshold_; }
+
+  const cv::Mat& image() const { return image_; }
+
+private:
+
+  /// Whole px of free space at (x, y) (0 without a map).
+  int leap(float x, float y) const;
+
+  cv::Mat image_;
+  cv::Mat free_space_;
+  float threshold_;
+  float max_length_;
+};
+
+/// Converts any supported image to the scanner's input: 8-bit grey, smoothed
+/// with a Gaussian of `blur_sigma` px (0: no smoothing). Accepts CV_8U/16U/32F
+/// with 1, 3 (BGR) or 4 (BGRA) channels; throws InputError naming the type
+/// otherwise, and for an empty image.
+cv::Mat prepareScanImage(const cv::Mat& image, double blur_sigma);
+
+/// Converts to 8-bit grey without smoothing (the same rules as prepareScanImage).
+cv::Mat toGray8(const cv::Mat& image);
+}  // namespace amcr

@@ -1,0 +1,42 @@
+// What the recognizer reports per frame (spec "Output").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "amcr/affine.h"
+
+namespace amcr
+{
+/// A V-particle's position and the mean of its winning M-cluster.
+struct Correspondence
+{
+  cv::Point2d image;      ///< input px
+  cv::Point2d prototype;  ///< px of the original prototype image
+};
+
+struct RecognizedObject
+{
+  std::string label;
+  int prototype_id = -1;  ///< index into the memory
+  int track_id = 0;       ///< stable while the object stays recognized, never reused in a run
+  /// Share of the prototype's outline found on image edges after the affine
+  /// fit, in [0, 1].
+  double score = 0.0;
+  int support = 0;  ///< V-particles that agree on this object
+  Affine image_to_prototype;  ///< input px -> original prototype px
+  Affine prototype_to_image;  ///< original prototype px -> input px
+  std::vector<Correspondence> correspondences;
+  std::vector<cv::Point2d> outline;  ///< the prototype's outline mapped into the input, px
+};
+
+struct RecognitionResult
+{
+  long iteration = 0;         ///< iterations run since the last reset
+  double time_ms = 0.0;       ///< processing time of this step
+  int converged_v_particles = 0;  ///< V-particles with a focused M-cluster
+  std::vector<RecognizedObject> objects;  ///< only objects at or above the decision threshold
+};
+}  // namespace amcr

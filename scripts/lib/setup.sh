@@ -1,0 +1,117 @@
+# shellcheck shell=bash disable=SC2034,SC2119,SC2120
+# Shared set-up of scripts/test and scripts/demo (sourced, not run).
+#
+# On a Debian bookworm machine (root, or a user with sudo) it installs the Debian packages that
+# are missing, builds a catkin workspace around this checkout and builds the package.
+# The workspace is $AMCR_WS, by default <repo>/.build/ws (ignored by git; .build/CATKIN_IGNORE
+# keeps catkin from looking into it), with src/amcr a symlink to the checkout.
+#
+# Functions: amcr_stage, amcr_die, amcr_install_packages, amcr_environment,
+# amcr_make_workspace, amcr_catkin_make, amcr_source_devel, amcr_setup (all of the set-up).
+
+AMCR_REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd -P)"
+AMCR_WS="$(realpath -m "${AMCR_WS:-$AMCR_REPO/.build/ws}")"
+AMCR_JOBS="${AMCR_JOBS:-2}"
+
+# Debian packages: the recipe of docs/ros-on-debian.md plus what this package and its later
+# issues use. opencv-doc provides the silhouettes and photos of the demo sequence.
+AMCR_PACKAGES=(
+  build-essential ros-base-dev rosbash libimage-transport-dev libcv-bridge-dev
+  libtf2-ros-dev libtf2-eigen-dev python3-rostest python3-cv-bridge python3-opencv
+  libopencv-dev libeigen3-dev libgtest-dev python3-dynamic-reconfigure
+  libdiagnostic-updater-dev libnodeletlib-dev librosbag-dev opencv-doc libbenchmark-dev
+)
+
+# Debian's python3, never a pyenv/venv one (ros-on-debian.md, gotcha 1).
+AMCR_CMAKE_ARGS=(-DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3)
+
+AMCR_STAGE=""
+amcr_stage() {
+  AMCR_STAGE="$*"
+  printf '\n==== %s ====\n' "$*"
+}
+
+amcr_die() {
+  printf 'error: %s\n' "$*" >&2
+  exit 1
+}
+
+# Installs the packages of AMCR_PACKAGES that are not installed yet; does nothing (and needs no
+# network or root) when all are there.
+amcr_install_packages() {
+  amcr_stage "Debian packages"
+  local missing=() pkg status
+  for pkg in "${AMCR_PACKAGES[@]}"; do
+    status="$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)"
+    [[ "$status" == installed ]] || missing+=("$pkg")
+  done
+  if ((${#missing[@]} == 0)); then
+    echo "all ${#AMCR_PACKAGES[@]} packages are installed"
+    return 0
+  fi
+  echo "missing: ${missing[*]}"
+  local sudo=()
+  if ((EUID != 0)); then
+    command -v sudo >/dev/null || amcr_die "not root and no sudo: install as root: apt-get install ${missing[*]}"
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q update
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q install -y --no-install-recommends \
+    -o Dpkg::Use-Pty=0 "${missing[@]}"
+}
+
+# The environment every catkin and ROS command here runs in (ros-on-debian.md, "Build and test").
+amcr_environment() {
+  export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
+  unset PYTHONHOME VIRTUAL_ENV PYENV_VERSION ROS_HOSTNAME
+  export ROS_MASTER_URI=http://127.0.0.1:11311
+  export ROS_IP=127.0.0.1
+  export ROS_HOME="$AMCR_WS/.ros_home"
+  mkdir -p "$ROS_HOME"
+}
+
+amcr_make_workspace() {
+  amcr_stage "Workspace $AMCR_WS"
+  # Inside the checkout the workspace lives under .build/, which catkin must not search.
+  mkdir -p "$AMCR_REPO/.build"
+  touch "$AMCR_REPO/.build/CATKIN_IGNORE"
+  mkdir -p "$AMCR_WS/src"
+  local link="$AMCR_WS/src/amcr"
+  if [[ -e "$link" && ! -L "$link" ]]; then
+    amcr_die "$link exists and is not a symlink; move it away or set AMCR_WS"
+  fi
+  if [[ "$(readlink "$link" 2>/dev/null || true)" != "$AMCR_REPO" ]]; then
+    ln -sfn "$AMCR_REPO" "$link"
+  fi
+  # A build tree configured for another source path (moved workspace) cannot be reused.
+  local cache="$AMCR_WS/build/CMakeCache.txt"
+  if [[ -f "$cache" ]] && ! grep -qxF "CMAKE_HOME_DIRECTORY:INTERNAL=$AMCR_WS/src" "$cache"; then
+    echo "build/ was configured elsewhere: removing build/ and devel/"
+    rm -rf "$AMCR_WS/build" "$AMCR_WS/devel"
+  fi
+  echo "src/amcr -> $(readlink "$link")"
+}
+
+# catkin_make [targets...] in the workspace, with Debian's python and $AMCR_JOBS jobs.
+amcr_catkin_make() {
+  (cd "$AMCR_WS" && catkin_make "${AMCR_CMAKE_ARGS[@]}" -j"$AMCR_JOBS" "$@")
+}
+
+# setup.bash reads unset variables: source it with `set -u` off.
+amcr_source_devel() {
+  [[ -f "$AMCR_WS/devel/setup.bash" ]] || amcr_die "no $AMCR_WS/devel/setup.bash: the build did not finish"
+  set +u
+  # shellcheck disable=SC1091
+  source "$AMCR_WS/devel/setup.bash"
+  set -u
+}
+
+# All of the set-up: packages, environment, workspace, build.
+amcr_setup() {
+  amcr_install_packages
+  amcr_environment
+  amcr_make_workspace
+  amcr_stage "Build (catkin_make)"
+  amcr_catkin_make
+  amcr_source_devel
+}

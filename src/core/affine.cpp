@@ -1,0 +1,92 @@
+#include "amcr/affine.h"
+
+#include <cmath>
+
+namespace amcr
+{
+namespace
+{
+/// Twice the signed area of triangle (a, b, c).
+template <typename T>
+T doubleSignedArea(T ax, T ay, T bx, T by, T cx, T cy)
+{
+  return (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+}
+}  // namespace
+
+// The affine map of paper 4.1: with the source triangle's edge vectors
+// S = [b - a, c - a] and the destination's D = [b' - a', c' - a'], the linear
+// part is L = D S^-1 and the translation t = a' - L a.
+bool affineFromTriangles(const cv::Point2d src[3], const cv::Point2d dst[3], double min_area, Affine& out)
+{
+  const double src_area2 = doubleSignedArea(src[0].x, src[0].y, src[1].x, src[1].y, src[2].x, src[2].y);
+  const double dst_area2 = doubleSignedArea(dst[0].x, dst[0].y, dst[1].x, dst[1].y, dst[2].x, dst[2].y);
+  const double limit = std::max(2.0 * min_area, 1e-12);
+  if (std::abs(src_area2) < limit || std::abs(dst_area2) < limit)
+    return false;
+  const double s00 = src[1].x - src[0].x, s01 = src[2].x - src[0].x;
+  const double s10 = src[1].y - src[0].y, s11 = src[2].y - src[0].y;
+  const double d00 = dst[1].x - dst[0].x, d01 = dst[2].x - dst[0].x;
+  const double d10 = dst[1].y - dst[0].y, d11 = dst[2].y - dst[0].y;
+  const double inv = 1.0 / src_area2;  // det S
+  const double i00 = s11 * inv, i01 = -s01 * inv, i10 = -s10 * inv, i11 = s00 * inv;
+  const double l00 = d00 * i00 + d01 * i10, l01 = d00 * i01 + d01 * i11;
+  const double l10 = d10 * i00 + d11 * i10, l11 = d10 * i01 + d11 * i11;
+  out = Affine(l00, l01, dst[0].x - l00 * src[0].x - l01 * src[0].y,  //
+               l10, l11, dst[0].y - l10 * src[0].x - l11 * src[0].y);
+  return true;
+}
+
+bool affineFromTriangles(const float src_x[3], const float src_y[3], const float dst_x[3], const float dst_y[3],
+                         float min_src_area, float min_dst_area, float out[6])
+{
+  const float s00 = src_x[1] - src_x[0], s01 = src_x[2] - src_x[0];
+  const float s10 = src_y[1] - src_y[0], s11 = src_y[2] - src_y[0];
+  const float d00 = dst_x[1] - dst_x[0], d01 = dst_x[2] - dst_x[0];
+  const float d10 = dst_y[1] - dst_y[0], d11 = dst_y[2] - dst_y[0];
+  const float src_area2 = s00 * s11 - s01 * s10;
+  const float dst_area2 = d00 * d11 - d01 * d10;
+  if (!(std::abs(src_area2) >= std::max(2.f * min_src_area, 1e-6f)) ||
+      !(std::abs(dst_area2) >= std::max(2.f * min_dst_area, 1e-6f)))
+    return false;
+  const float inv = 1.f / src_area2;
+  const float i00 = s11 * inv, i01 = -s01 * inv, i10 = -s10 * inv, i11 = s00 * inv;
+  out[0] = d00 * i00 + d01 * i10;
+  out[1] = d00 * i01 + d01 * i11;
+  out[3] = d10 * i00 + d11 * i10;
+  out[4] = d10 * i01 + d11 * i11;
+  out[2] = dst_x[0] - out[0] * src_x[0] - out[1] * src_y[0];
+  out[5] = dst_y[0] - out[3] * src_x[0] - out[4] * src_y[0];
+  return true;
+}
+
+bool invertAffine(const Affine& a, Affine& inverse)
+{
+  const double det = a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0);
+  if (!(std::abs(det) > 1e-12) || !std::isfinite(det))
+    return false;
+  const double i00 = a(1, 1) / det, i01 = -a(0, 1) / det;
+  const double i10 = -a(1, 0) / det, i11 = a(0, 0) / det;
+  inverse = Affine(i00, i01, -(i00 * a(0, 2) + i01 * a(1, 2)),  //
+                   i10, i11, -(i10 * a(0, 2) + i11 * a(1, 2)));
+  return true;
+}
+
+Affine composeAffine(const Affine& first, const Affine& second)
+{
+  const cv::Matx33d f(first(0, 0), first(0, 1), first(0, 2), first(1, 0), first(1, 1), first(1, 2), 0, 0, 1);
+  const cv::Matx33d s(second(0, 0), second(0, 1), second(0, 2), second(1, 0), second(1, 1), second(1, 2), 0, 0, 1);
+  const cv::Matx33d c = s * f;
+  return Affine(c(0, 0), c(0, 1), c(0, 2), c(1, 0), c(1, 1), c(1, 2));
+}
+
+void affineScales(const Affine& a, double& smallest, double& largest)
+{
+  // Singular values of the 2x2 linear part, closed form.
+  const double p = a(0, 0), q = a(0, 1), r = a(1, 0), s = a(1, 1);
+  const double e = (p + s) / 2, f = (p - s) / 2, g = (r + q) / 2, h = (r - q) / 2;
+  const double qn = std::hypot(e, h), rn = std::hypot(f, g);
+  largest = qn + rn;
+  smallest = std::abs(qn - rn);
+}
+}  // namespace amcr

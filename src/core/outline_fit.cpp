@@ -1,0 +1,195 @@
+#include "amcr/outline_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace amcr
+{
+namespace
+{
+/// An outline point mapped into the image with its image-space unit normal.
+struct MappedPoint
+{
+  cv::Point2d table;
+  cv::Point2d image;
+  cv::Point2d normal;
+};
+
+std::vector<MappedPoint> mapOutline(const Prototype& prototype, const Affine& table_to_image)
+{
+  // Normals map with the inverse transpose of the linear part.
+  const double a = table_to_image(0, 0), b = table_to_image(0, 1);
+  const double c = table_to_image(1, 0), d = table_to_image(1, 1);
+  const double det = a * d - b * c;
+  std::vector<MappedPoint> mapped;
+  if (std::abs(det) < 1e-12)
+    return mapped;
+  mapped.reserve(prototype.outline().size());
+  for (const auto& o : prototype.outline())
+  {
+    const cv::Point2d q(o.position.x, o.position.y);
+    const double nx = (d * o.normal.x - c * o.normal.y) / det;
+    const double ny = (-b * o.normal.x + a * o.normal.y) / det;
+    const double len = std::hypot(nx, ny);
+    if (len < 1e-12)
+      continue;
+    mapped.push_back({q, applyAffine(table_to_image, q), {nx / len, ny / len}});
+  }
+  return mapped;
+}
+
+/// Signed edge strength at t along the normal: I(t + 1) - I(t - 1), or 0
+/// where the samples leave the image.
+double stepAt(const RadialScanner& scanner, const MappedPoint& p, double t)
+{
+  const double x0 = p.image.x + (t - 1) * p.normal.x, y0 = p.image.y + (t - 1) * p.normal.y;
+  const double x1 = p.image.x + (t + 1) * p.normal.x, y1 = p.image.y + (t + 1) * p.normal.y;
+  const float fx0 = static_cast<float>(x0), fy0 = static_cast<float>(y0);
+  const float fx1 = static_cast<float>(x1), fy1 = static_cast<float>(y1);
+  if (!scanner.contains(fx0, fy0) || !scanner.contains(fx1, fy1))
+    return 0.0;
+  return scanner.sample(fx1, fy1) - scanner.sample(fx0, fy0);
+}
+
+/// The strongest edge within [-search, search] along the normal (0.5 px
+/// steps); returns false when none reaches the scanner's threshold.
+bool strongestEdge(const RadialScanner& scanner, const MappedPoint& p, double search, double& offset, double& step)
+{
+  double best = 0.0;
+  for (double t = -search; t <= search + 1e-9; t += 0.5)
+  {
+    const double s = stepAt(scanner, p, t);
+    if (std::abs(s) > std::abs(best) || (std::abs(s) == std::abs(best) && std::abs(t) < std::abs(offset)))
+    {
+      best = s;
+      offset = t;
+    }
+  }
+  step = best;
+  return std::abs(best) >= scanner.threshold();
+}
+
+/// The nearest edge of polarity `sign` (+1: grey rises outwards, -1: falls)
+/// within [-search, search] along the normal: the local maximum of the signed
+/// step closest to the outline point (the "moving edges" search of
+/// model-based trackers). Returns false when there is none.
+bool nearestEdge(const RadialScanner& scanner, const MappedPoint& p, double search, int sign, double& offset)
+{
+  const double threshold = scanner.threshold();
+  double best_distance = search + 1.0;
+  double prev = sign * stepAt(scanner, p, -search - 0.5);
+  double current = sign * stepAt(scanner, p, -search);
+  for (double t = -search; t <= search + 1e-9; t += 0.5)
+  {
+    const double next = sign * stepAt(scanner, p, t + 0.5);
+    if (current >= threshold && current >= prev && current >= next && std::abs(t) < best_distance)
+    {
+      best_distance = std::abs(t);
+      offset = t;
+    }
+    prev = current;
+    current = next;
+  }
+  return best_distance <= search;
+}
+
+/// The polarity most outline points show: +1 when the grey level rises
+/// outwards (a dark print on light paper), -1 otherwise.
+int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped, double search)
+{
+  int rising = 0, falling = 0;
+  for (const auto& p : mapped)
+  {
+    double offset = 0.0, step = 0.0;
+    if (strongestEdge(scanner, p, search, offset, step))
+      (step > 0 ? rising : falling)++;
+  }
+  return rising >= falling ? 1 : -1;
+}
+
+/// Least-squares affine from table points to image points.
+bool fitAffine(const std::vector<cv::Point2d>& from, const std::vector<cv::Point2d>& to, Affine& out)
+{
+  if (from.size() < 3)
+    return false;
+  cv::Matx33d ata = cv::Matx33d::zeros();
+  cv::Vec3d atx(0, 0, 0), aty(0, 0, 0);
+  for (std::size_t i = 0; i < from.size(); ++i)
+  {
+    const cv::Vec3d r(from[i].x, from[i].y, 1.0);
+    ata += r * r.t();
+    atx += r * to[i].x;
+    aty += r * to[i].y;
+  }
+  cv::Vec3d px, py;
+  if (!cv::solve(ata, atx, px, cv::DECOMP_CHOLESKY) || !cv::solve(ata, aty, py, cv::DECOMP_CHOLESKY))
+    return false;
+  out = Affine(px[0], px[1], px[2], py[0], py[1], py[2]);
+  return std::isfinite(px[0] + px[1] + px[2] + py[0] + py[1] + py[2]);
+}
+}  // namespace
+
+Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
+                     int iterations, double search)
+{
+  Affine current = table_to_image;
+  if (iterations <= 0)
+    return current;
+  const int sign = dominantPolarity(scanner, mapOutline(prototype, current), search);
+  for (int pass = 0; pass < iterations; ++pass)
+  {
+    // Coarse to fine: the search shrinks to a third over the passes.
+    const double range = std::max(1.5, search * (1.0 - (2.0 / 3.0) * pass / std::max(1, iterations - 1)));
+    const std::vector<MappedPoint> mapped = mapOutline(prototype, current);
+    std::vector<cv::Point2d> from, to;
+    std::vector<double> residual;
+    for (const auto& p : mapped)
+    {
+      double offset = 0.0;
+      if (!nearestEdge(scanner, p, range, sign, offset))
+        continue;
+      from.push_back(p.table);
+      to.push_back(p.image + offset * p.normal);
+      residual.push_back(std::abs(offset));
+    }
+    if (from.size() < std::max<std::size_t>(6, mapped.size() / 4))
+      break;
+    // Drop points whose edge is far beyond the typical one (clutter).
+    std::vector<double> sorted = residual;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double limit = std::max(1.0, 2.5 * sorted[sorted.size() / 2]);
+    std::vector<cv::Point2d> kept_from, kept_to;
+    for (std::size_t i = 0; i < from.size(); ++i)
+      if (residual[i] <= limit)
+      {
+        kept_from.push_back(from[i]);
+        kept_to.push_back(to[i]);
+      }
+    Affine next;
+    if (!fitAffine(kept_from, kept_to, next))
+      break;
+    current = next;
+  }
+  return current;
+}
+
+double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
+                      double tolerance)
+{
+  const std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
+  if (mapped.empty() || prototype.outline().empty())
+    return 0.0;
+  // A printed shape has one polarity all round: count edges of the majority's only.
+  const int sign = dominantPolarity(scanner, mapped, tolerance);
+  int found = 0;
+  for (const auto& p : mapped)
+  {
+    double offset = 0.0;
+    found += nearestEdge(scanner, p, tolerance, sign, offset) ? 1 : 0;
+  }
+  return static_cast<double>(found) / static_cast<double>(prototype.outline().size());
+}
+}  // namespace amcr

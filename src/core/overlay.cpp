@@ -1,0 +1,309 @@
+// The overlay of paper figures 2, 5 and 7: input with V-particles and outlines,
+// prototypes with M-particles, correspondence lines between them.
+#include "amcr/overlay.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include "amcr/errors.h"
+#include "amcr/radial_scan.h"
+
+namespace amcr
+{
+namespace
+{
+const cv::Scalar kPanelBackground(40, 40, 40);
+const cv::Scalar kPanelShape(115, 115, 115);
+const cv::Scalar kUndecided(170, 170, 170);
+const cv::Scalar kTextBackground(20, 20, 20);
+const int kFont = cv::FONT_HERSHEY_SIMPLEX;
+
+/// An evenly spread hue sequence (golden ratio), as BGR.
+cv::Scalar hueColour(double position, int saturation)
+{
+  const double hue = std::fmod(position * 0.6180339887498949, 1.0);
+  cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar(hue * 180.0, saturation, 255));
+  cv::Mat bgr;
+  cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
+  const cv::Vec3b c = bgr.at<cv::Vec3b>(0, 0);
+  return cv::Scalar(c[0], c[1], c[2]);
+}
+
+cv::Scalar trackColour(int track_id) { return hueColour(track_id + 0.37, 150); }
+
+/// The input as 8-bit BGR: 8-bit images keep their colour, any other type
+/// goes through the library's grey conversion (which names unsupported types).
+cv::Mat toBgr8(const cv::Mat& input)
+{
+  if (input.empty())
+    throw InputError("drawOverlay: the input image is empty");
+  cv::Mat bgr;
+  if (input.depth() == CV_8U && input.channels() == 3)
+    bgr = input.clone();
+  else if (input.depth() == CV_8U && input.channels() == 4)
+    cv::cvtColor(input, bgr, cv::COLOR_BGRA2BGR);
+  else if (input.depth() == CV_8U && input.channels() == 1)
+    cv::cvtColor(input, bgr, cv::COLOR_GRAY2BGR);
+  else
+    cv::cvtColor(toGray8(input), bgr, cv::COLOR_GRAY2BGR);
+  return bgr;
+}
+
+/// Text on a dark box so it reads over any background; `origin` is the
+/// top-left corner of the box. The box is kept inside `canvas`.
+void drawText(cv::Mat& canvas, const std::string& text, cv::Point origin, const cv::Scalar& colour,
+              double scale = 0.4)
+{
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, kFont, scale, 1, &baseline);
+  cv::Rect box(origin.x, origin.y, size.width + 4, size.height + baseline + 4);
+  box.x = std::max(0, std::min(box.x, canvas.cols - box.width));
+  box.y = std::max(0, std::min(box.y, canvas.rows - box.height));
+  cv::rectangle(canvas, box, kTextBackground, cv::FILLED);
+  cv::putText(canvas, text, cv::Point(box.x + 2, box.y + 2 + size.height), kFont, scale, colour, 1, cv::LINE_AA);
+}
+
+std::string format(const char* pattern, double value)
+{
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), pattern, value);
+  return buffer;
+}
+
+/// Where a prototype's table is drawn inside its cell: panel = offset + scale * table.
+struct PanelMap
+{
+  cv::Rect cell;
+  cv::Rect picture;  // the scaled mask
+  double scale = 1.0;
+  cv::Point2d offset;
+
+  /// Table px (pixel centres) -> overlay px, consistent with cv::resize.
+  cv::Point2d toOverlay(const cv::Point2d& table) const
+  {
+    return {offset.x + (table.x + 0.5) * scale - 0.5, offset.y + (table.y + 0.5) * scale - 0.5};
+  }
+};
+
+int labelStripHeight(int cell) { return std::max(12, std::min(18, cell / 8)); }
+
+PanelMap panelMap(const OverlayLayout& layout, int index, const Prototype& prototype)
+{
+  PanelMap map;
+  map.cell = layout.cellRect(index);
+  const int pad = 3;
+  const int strip = labelStripHeight(layout.cell);
+  const int avail_w = std::max(1, map.cell.width - 2 * pad);
+  const int avail_h = std::max(1, map.cell.height - strip - 2 * pad);
+  const int w = std::max(1, prototype.width());
+  const int h = std::max(1, prototype.height());
+  map.scale = std::min(static_cast<double>(avail_w) / w, static_cast<double>(avail_h) / h);
+  const int pw = std::max(1, static_cast<int>(std::lround(w * map.scale)));
+  const int ph = std::max(1, static_cast<int>(std::lround(h * map.scale)));
+  map.picture = cv::Rect(map.cell.x + pad + (avail_w - pw) / 2, map.cell.y + strip + pad + (avail_h - ph) / 2, pw, ph);
+  map.offset = cv::Point2d(map.picture.x, map.picture.y);
+  return map;
+}
+
+cv::Point toPixel(const cv::Point2d& p) { return cv::Point(cvRound(p.x), cvRound(p.y)); }
+
+bool finite(const cv::Point2d& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+
+void drawPanel(cv::Mat& canvas, const PanelMap& map, const Prototype& prototype, int index, bool recognized)
+{
+  cv::Mat cell = canvas(map.cell);
+  cell.setTo(kPanelBackground);
+  if (!prototype.mask().empty())
+  {
+    cv::Mat scaled;
+    cv::resize(prototype.mask(), scaled, map.picture.size(), 0, 0, cv::INTER_AREA);
+    cv::Mat picture = canvas(map.picture);
+    picture.setTo(kPanelShape, scaled > 127);
+  }
+  const cv::Scalar colour = prototypeColour(index);
+  cv::rectangle(canvas, map.cell, colour, recognized ? 3 : 1);
+  const int strip = labelStripHeight(map.cell.height);
+  const double scale = std::min(0.45, std::max(0.3, strip / 36.0));
+  std::string label = prototype.label();
+  // Shorten labels that do not fit the cell.
+  while (label.size() > 3 && cv::getTextSize(label, kFont, scale, 1, nullptr).width > map.cell.width - 12)
+    label = label.substr(0, label.size() - 3) + "..";
+  cv::putText(canvas, label, cv::Point(map.cell.x + 6, map.cell.y + strip - 1), kFont, scale, colour, 1, cv::LINE_AA);
+}
+}  // namespace
+
+cv::Scalar prototypeColour(int index) { return hueColour(index, 230); }
+
+cv::Scalar vParticleColour(int index) { return hueColour(index + 0.5, 255); }
+
+cv::Rect OverlayLayout::cellRect(int index) const
+{
+  const int columns = std::max(1, grid_columns);
+  return cv::Rect(column.x + (index % columns) * cell, column.y + (index / columns) * cell, cell, cell);
+}
+
+OverlayLayout overlayLayout(const cv::Size& input_size, std::size_t num_prototypes, const OverlayOptions& options)
+{
+  const int r = static_cast<int>(std::max<std::size_t>(1, num_prototypes));
+  const int min_cell = std::max(16, options.min_panel_size);
+  const int height = std::max(input_size.height, min_cell);
+  const double fraction = std::min(4.0, std::max(0.05, options.max_column_fraction));
+  const int max_width = std::max(min_cell, static_cast<int>(fraction * input_size.width));
+
+  // The grid with the largest square cells that fits the height and the width budget.
+  OverlayLayout layout;
+  for (int c = 1; c <= r; ++c)
+  {
+    const int rows = (r + c - 1) / c;
+    const int cell = std::min(height / rows, max_width / c);
+    if (cell > layout.cell)
+    {
+      layout.cell = cell;
+      layout.grid_columns = c;
+      layout.grid_rows = rows;
+    }
+  }
+  // Too many prototypes for the budget: keep the cells readable, widen the column.
+  if (layout.cell < min_cell)
+  {
+    const int rows_max = std::max(1, height / min_cell);
+    layout.grid_columns = (r + rows_max - 1) / rows_max;
+    layout.grid_rows = (r + layout.grid_columns - 1) / layout.grid_columns;
+    layout.cell = height / layout.grid_rows;
+  }
+  layout.image = cv::Rect(0, 0, input_size.width, input_size.height);
+  layout.column = cv::Rect(input_size.width, 0, layout.grid_columns * layout.cell, height);
+  // Even sides: some video codecs (mp4v, H.264) refuse odd frame sizes.
+  layout.size = cv::Size((input_size.width + layout.column.width + 1) / 2 * 2, (height + 1) / 2 * 2);
+  return layout;
+}
+
+cv::Mat drawOverlay(const cv::Mat& input, const Recognizer& recognizer, const RecognitionResult& result,
+                    const OverlayOptions& options)
+{
+  const cv::Mat bgr = toBgr8(input);
+  const PrototypeMemory& memory = recognizer.memory();
+  const int r = static_cast<int>(memory.size());
+  const OverlayLayout layout = overlayLayout(bgr.size(), memory.size(), options);
+
+  cv::Mat canvas(layout.size, CV_8UC3, cv::Scalar(0, 0, 0));
+  bgr.copyTo(canvas(layout.image));
+
+  // Prototype panels; a recognized prototype gets a thick frame.
+  std::vector<bool> recognized(r, false);
+  for (const RecognizedObject& object : result.objects)
+    if (object.prototype_id >= 0 && object.prototype_id < r)
+      recognized[object.prototype_id] = true;
+  std::vector<PanelMap> panels;
+  panels.reserve(r);
+  for (int k = 0; k < r; ++k)
+  {
+    panels.push_back(panelMap(layout, k, memory[k]));
+    drawPanel(canvas, panels.back(), memory[k], k, recognized[k]);
+  }
+
+  // M-particles in the panels, one colour per owning V-particle, and each
+  // V-particle's dominant prototype.
+  const std::vector<VParticle>& vs = recognizer.vParticles();
+  const MParticleSet& ms = recognizer.mParticles();
+  const std::size_t per_v = static_cast<std::size_t>(std::max(0, recognizer.mParticlesPerV()));
+  std::vector<int> dominant(vs.size(), -1);
+  std::vector<int> counts(r);
+  for (std::size_t v = 0; v < vs.size(); ++v)
+  {
+    const std::size_t begin = std::min(ms.size(), v * per_v);
+    const std::size_t end = std::min(ms.size(), (v + 1) * per_v);
+    std::fill(counts.begin(), counts.end(), 0);
+    const cv::Scalar colour = vParticleColour(static_cast<int>(v));
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const int k = i < ms.prototype.size() ? ms.prototype[i] : -1;
+      if (k < 0 || k >= r)
+        continue;
+      ++counts[k];
+      if (options.draw_m_particles)
+      {
+        const cv::Point2d p = panels[k].toOverlay(cv::Point2d(ms.x[i], ms.y[i]));
+        if (finite(p) && panels[k].picture.contains(toPixel(p)))
+          cv::circle(canvas, toPixel(p), options.m_dot_radius, colour, cv::FILLED);
+      }
+    }
+    if (end > begin)
+    {
+      const auto best = std::max_element(counts.begin(), counts.end());
+      if (best != counts.end() && 2 * *best >= static_cast<int>(end - begin))
+        dominant[v] = static_cast<int>(best - counts.begin());
+    }
+  }
+
+  // Recognized objects: outline and text in the input, correspondence lines
+  // from the V-particles to the cluster means in the panel.
+  cv::Mat image = canvas(layout.image);
+  for (const RecognizedObject& object : result.objects)
+  {
+    const cv::Scalar colour = trackColour(object.track_id);
+    std::vector<cv::Point> outline;
+    outline.reserve(object.outline.size());
+    for (const cv::Point2d& p : object.outline)
+      if (finite(p))
+        outline.push_back(toPixel(p));
+    if (outline.size() >= 2)
+      cv::polylines(image, outline, true, colour, 2, cv::LINE_AA);
+
+    if (options.draw_correspondences && object.prototype_id >= 0 && object.prototype_id < r)
+    {
+      const Prototype& prototype = memory[object.prototype_id];
+      const PanelMap& panel = panels[object.prototype_id];
+      for (const Correspondence& c : object.correspondences)
+      {
+        const cv::Point2d target = panel.toOverlay(applyAffine(prototype.originalToTable(), c.prototype));
+        if (!finite(c.image) || !finite(target))
+          continue;
+        cv::line(canvas, toPixel(c.image), toPixel(target), colour, 1, cv::LINE_AA);
+        // The cluster mean, ringed in black so it stands out of the M-particle dots.
+        cv::circle(canvas, toPixel(target), 4, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+        cv::circle(canvas, toPixel(target), 4, colour, 1, cv::LINE_AA);
+      }
+    }
+
+    std::string text = object.label + " #" + std::to_string(object.track_id) + " " +
+                       format("%.2f", object.score) + " (" + std::to_string(object.support) + ")";
+    cv::Point anchor(0, 0);
+    if (!outline.empty())
+    {
+      const cv::Rect box = cv::boundingRect(outline);
+      anchor = cv::Point(box.x, box.y - 18);
+    }
+    drawText(image, text, anchor, colour);
+  }
+
+  // V-particles on top: circle in the dominant prototype's colour, heading
+  // tick in the V-particle's own colour.
+  for (std::size_t v = 0; options.draw_v_particles && v < vs.size(); ++v)
+  {
+    const cv::Point2d p(vs[v].x, vs[v].y);
+    if (!finite(p) || !std::isfinite(vs[v].theta))
+      continue;
+    const cv::Scalar circle_colour = dominant[v] >= 0 ? prototypeColour(dominant[v]) : kUndecided;
+    const cv::Point2d tip(p.x + options.heading_length * std::cos(vs[v].theta),
+                          p.y + options.heading_length * std::sin(vs[v].theta));
+    cv::line(image, toPixel(p), toPixel(tip), vParticleColour(static_cast<int>(v)), 2, cv::LINE_AA);
+    cv::circle(image, toPixel(p), options.v_radius, circle_colour, 2, cv::LINE_AA);
+  }
+
+  if (options.draw_status)
+  {
+    const std::string status = "iteration " + std::to_string(result.iteration) + "  " +
+                               format("%.1f ms", result.time_ms) + "  converged V " +
+                               std::to_string(result.converged_v_particles) + "/" + std::to_string(vs.size()) +
+                               "  objects " + std::to_string(result.objects.size());
+    drawText(image, status, cv::Point(0, 0), cv::Scalar(255, 255, 255));
+  }
+  return canvas;
+}
+}  // namespace amcr

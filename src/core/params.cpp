@@ -1,0 +1,212 @@
+#include "amcr/params.h"
+
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include <opencv2/core.hpp>
+
+#include "amcr/errors.h"
+
+namespace amcr
+{
+namespace
+{
+/// One numeric parameter: its description and how to read and write it.
+struct NumericParameter
+{
+  ParameterInfo info;
+  std::function<double(const Params&)> get;
+  std::function<void(Params&, double)> set;
+  bool integer;
+};
+
+#define AMCR_DOUBLE(field, unit, lo, hi, text)                                                       \
+  NumericParameter                                                                                   \
+  {                                                                                                  \
+    {#field, unit, lo, hi, text}, [](const Params& p) { return static_cast<double>(p.field); },     \
+        [](Params& p, double v) { p.field = v; }, false                                              \
+  }
+#define AMCR_INT(field, unit, lo, hi, text)                                                          \
+  NumericParameter                                                                                   \
+  {                                                                                                  \
+    {#field, unit, lo, hi, text}, [](const Params& p) { return static_cast<double>(p.field); },     \
+        [](Params& p, double v) { p.field = static_cast<decltype(p.field)>(std::llround(v)); }, true \
+  }
+
+const std::vector<NumericParameter>& numericParameters()
+{
+  static const std::vector<NumericParameter> table = {
+      AMCR_INT(num_v_particles, "", 1, 5000, "V-particles in the input image; paper 30"),
+      AMCR_INT(m_particles_per_prototype, "", 1, 5000, "M-particles per prototype per V-particle; paper 60"),
+      AMCR_INT(prototype_size, "px", 32, 512, "longer side of a prototype in its lookup table"),
+      AMCR_DOUBLE(max_ray_length, "px", 10, 4000, "longest radial scan in the input image"),
+      AMCR_DOUBLE(edge_threshold, "grey levels", 1, 255, "step over 2 px that counts as an edge"),
+      AMCR_DOUBLE(blur_sigma, "px", 0, 10, "Gaussian smoothing of the input before scanning"),
+      AMCR_DOUBLE(sigma_w, "px", 1e-3, 1000, "std. dev. of a ray's deviation (eq. 5); paper 10"),
+      AMCR_DOUBLE(p_outlier, "", 0, 1, "probability that a ray is an outlier (eq. 5); paper 0.1"),
+      AMCR_DOUBLE(p_invalid, "", 0, 1, "probability of an invalid ray (eq. 6); paper 0.1"),
+      AMCR_DOUBLE(min_triangle_area, "px^2", 0, 1e6, "smaller affine triangles are degenerate"),
+      AMCR_DOUBLE(max_affine_scale, "", 1, 100, "largest accepted scale of A, either way"),
+      AMCR_DOUBLE(v_step, "px", 0, 100, "forward step of a V-particle per iteration"),
+      AMCR_DOUBLE(motion_noise_translation, "prototype px", 0, 100, "M-particle translation noise"),
+      AMCR_DOUBLE(motion_noise_rotation, "rad", 0, 3.15, "M-particle rotation noise"),
+      AMCR_DOUBLE(reflection_jitter, "rad", 0, 3.15, "largest random turn added at a reflection"),
+      AMCR_INT(v_resample_interval, "iterations", 1, 1000, "w: V-particles are resampled every w iterations; paper 10"),
+      AMCR_DOUBLE(v_reseed_fraction, "", 0, 1, "share of V-particles re-seeded at V-resampling"),
+      AMCR_DOUBLE(m_reseed_fraction, "", 0, 1, "share of M-particles re-seeded uniformly per iteration"),
+      AMCR_DOUBLE(injection_fraction, "", 0, 1, "share of M-particles placed at leading hypotheses"),
+      AMCR_INT(seed_enclosure_rays, "rays", 0, 8, "rays of 8 that must hit an edge where a V-particle is seeded"),
+      AMCR_INT(seed_attempts, "", 1, 1000, "tries to find an enclosed place for a new V-particle"),
+      AMCR_DOUBLE(cluster_radius, "prototype px", 0.5, 100, "radius of an M-particle cluster"),
+      AMCR_DOUBLE(cluster_min_share, "", 0, 1, "share of a V-particle's M-particles its cluster needs"),
+      AMCR_DOUBLE(group_tolerance, "px", 0.5, 200, "V-particles agree on an object within this distance"),
+      AMCR_INT(min_support, "V-particles", 1, 5000, "V-particles an object needs"),
+      AMCR_INT(refine_iterations, "", 0, 100, "outline-to-edge refinement passes of the affine"),
+      AMCR_DOUBLE(refine_search, "px", 0, 100, "search along the outline normal for an edge"),
+      AMCR_DOUBLE(decision_threshold, "", 0, 1, "smallest score reported"),
+      AMCR_INT(seed, "", 0, 9.007199254740992e15, "seed of the random generator"),
+  };
+  return table;
+}
+#undef AMCR_DOUBLE
+#undef AMCR_INT
+
+const NumericParameter* findNumeric(const std::string& name)
+{
+  for (const auto& p : numericParameters())
+    if (p.info.name == name)
+      return &p;
+  return nullptr;
+}
+
+std::string rangeText(const ParameterInfo& info)
+{
+  std::ostringstream out;
+  out << "[" << info.min << ", " << info.max << "]";
+  if (!info.unit.empty())
+    out << " " << info.unit;
+  return out.str();
+}
+}  // namespace
+
+void Params::validate() const
+{
+  for (const auto& p : numericParameters())
+  {
+    const double value = p.get(*this);
+    if (!std::isfinite(value) || value < p.info.min || value > p.info.max)
+    {
+      std::ostringstream out;
+      out << "parameter '" << p.info.name << "' = " << value << " is outside its range " << rangeText(p.info);
+      throw ParameterError(out.str());
+    }
+  }
+}
+
+const std::vector<ParameterInfo>& parameterTable()
+{
+  static const std::vector<ParameterInfo> table = [] {
+    std::vector<ParameterInfo> infos;
+    for (const auto& p : numericParameters())
+      infos.push_back(p.info);
+    return infos;
+  }();
+  return table;
+}
+
+void setParameter(Params& params, const std::string& name, double value)
+{
+  const NumericParameter* p = findNumeric(name);
+  if (!p)
+    throw ParameterError("unknown parameter '" + name + "'");
+  if (!std::isfinite(value) || value < p->info.min || value > p->info.max)
+  {
+    std::ostringstream out;
+    out << "parameter '" << name << "' = " << value << " is outside its range " << rangeText(p->info);
+    throw ParameterError(out.str());
+  }
+  if (p->integer && std::abs(value - std::round(value)) > 1e-9)
+  {
+    std::ostringstream out;
+    out << "parameter '" << name << "' = " << value << " must be a whole number";
+    throw ParameterError(out.str());
+  }
+  p->set(params, value);
+}
+
+void setParameter(Params& params, const std::string& name, const std::string& value)
+{
+  if (name == "likelihood_form")
+  {
+    if (value == "paper")
+      params.likelihood_form = LikelihoodForm::kPaper;
+    else if (value == "mixture")
+      params.likelihood_form = LikelihoodForm::kMixture;
+    else
+      throw ParameterError("parameter 'likelihood_form' = '" + value + "' must be 'paper' or 'mixture'");
+    return;
+  }
+  if (name == "deviation_space")
+  {
+    if (value == "image")
+      params.deviation_space = DeviationSpace::kImage;
+    else if (value == "prototype")
+      params.deviation_space = DeviationSpace::kPrototype;
+    else
+      throw ParameterError("parameter 'deviation_space' = '" + value + "' must be 'image' or 'prototype'");
+    return;
+  }
+  if (findNumeric(name))
+    throw ParameterError("parameter '" + name + "' takes a number, not '" + value + "'");
+  throw ParameterError("unknown parameter '" + name + "'");
+}
+
+double getParameter(const Params& params, const std::string& name)
+{
+  const NumericParameter* p = findNumeric(name);
+  if (!p)
+    throw ParameterError("unknown numeric parameter '" + name + "'");
+  return p->get(params);
+}
+
+Params loadParams(const std::string& yaml_path, Params params)
+{
+  cv::FileStorage storage;
+  try
+  {
+    if (!storage.open(yaml_path, cv::FileStorage::READ))
+      throw ParameterError("cannot read the parameter file '" + yaml_path + "'");
+  }
+  catch (const cv::Exception& e)
+  {
+    throw ParameterError("cannot parse the parameter file '" + yaml_path + "': " + e.err);
+  }
+  const cv::FileNode root = storage.root();
+  if (!root.isMap())
+    throw ParameterError("the parameter file '" + yaml_path + "' is not a map of name: value");
+  for (const cv::FileNode& node : root)
+  {
+    const std::string name = node.name();
+    try
+    {
+      if (node.isString())
+        setParameter(params, name, static_cast<std::string>(node));
+      else if (node.isInt() || node.isReal())
+        setParameter(params, name, static_cast<double>(node));
+      else
+        throw ParameterError("parameter '" + name + "' must be a number or a word");
+    }
+    catch (const ParameterError& e)
+    {
+      throw ParameterError(yaml_path + ": " + e.what());
+    }
+  }
+  params.validate();
+  return params;
+}
+
+std::string toString(LikelihoodForm form) { return form == LikelihoodForm::kPaper ? "paper" : "mixture"; }
+
+std::string toString(DeviationSpace space) { return space == DeviationSpace::kImage ? "image" : "prototype"; }
+}  // namespace amcr

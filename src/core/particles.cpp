@@ -1,0 +1,38 @@
+#include "amcr/particles.h"
+
+namespace amcr
+{
+int RaySignature::valid_rays() const
+{
+  int n = 0;
+  for (float d : distance)
+    n += d > 0.f ? 1 : 0;
+  return n;
+}
+
+void MParticleSet::resize(std::size_t n)
+{
+  x.resize(n);
+  y.resize(n);
+  theta.resize(n);
+  prototype.resize(n);
+  for (auto& a : affine)
+    a.resize(n);
+  affine_valid.resize(n);
+  log_likelihood.resize(n);
+}
+
+void MParticleSet::copy(std::size_t from, std::size_t to) { copyFrom(*this, from, to); }
+
+void MParticleSet::copyFrom(const MParticleSet& source, std::size_t from, std::size_t to)
+{
+  x[to] = source.x[from];
+  y[to] = source.y[from];
+  theta[to] = source.theta[from];
+  prototype[to] = source.prototype[from];
+  for (int k = 0; k < 6; ++k)
+    affine[k][to] = source.affine[k][from];
+  affine_valid[to] = source.affine_valid[from];
+  log_likelihood[to] = source.log_likelihood[from];
+}
+}  // namespace amcr

@@ -1,0 +1,694 @@
+#include "amcr/recognizer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "amcr/errors.h"
+#include "amcr/heading_proposal.h"
+#include "amcr/outline_fit.h"
+#include "amcr/ray_directions.h"
+#include "amcr/resampling.h"
+
+namespace amcr
+{
+namespace
+{
+constexpr double kVerifyTolerance = 2.0;          // px along the normal within which an outline point finds its edge
+constexpr int kMaxLeadingHypotheses = 3;          // hypotheses whose poses are injected as M-particles
+constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
+constexpr double kKeepTrackRatio = 0.8;           // a tracked object stays at this share of the decision threshold
+constexpr double kTrackDistance = 40.0;           // px an object's centre may move between frames and keep its track
+constexpr int kMaxCopiesPerV = 3;               // copies one V-particle may get at a V-resampling
+constexpr double kVerificationGain = 4.0;        // log-weight per unit of outline score above 0.5 (V-resampling)
+constexpr float kMinSeedRayLength = 4.f;  // px: shorter rays at a seed place mean texture, not a region
+
+/// cos and sin of every direction bin.
+struct BinDirections
+{
+  float cos[kDirectionBins];
+  float sin[kDirectionBins];
+  BinDirections()
+  {
+    for (int b = 0; b < kDirectionBins; ++b)
+    {
+      cos[b] = static_cast<float>(std::cos(binToAngle(b)));
+      sin[b] = static_cast<float>(std::sin(binToAngle(b)));
+    }
+  }
+};
+const BinDirections& binDirections()
+{
+  static const BinDirections directions;
+  return directions;
+}
+
+/// Axis-aligned box of a point set.
+cv::Rect2d boundsOf(const std::vector<cv::Point2d>& points)
+{
+  if (points.empty())
+    return {};
+  double x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
+  for (const auto& p : points)
+  {
+    x0 = std::min(x0, p.x);
+    x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y);
+    y1 = std::max(y1, p.y);
+  }
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+double overlap(const cv::Rect2d& a, const cv::Rect2d& b)
+{
+  const double inter = (a & b).area();
+  const double uni = a.area() + b.area() - inter;
+  return uni > 0 ? inter / uni : 0.0;
+}
+}  // namespace
+
+Recognizer::Recognizer(const Params& params, std::shared_ptr<const PrototypeMemory> memory)
+  : params_((params.validate(), params))
+  , policy_(std::make_unique<ReflectAtEdgesPolicy>(params.v_step, params.reflection_jitter))
+  , observation_(params)
+  , motion_(params)
+  , rng_(params.seed)
+{
+  setMemory(std::move(memory));
+}
+
+void Recognizer::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
+{
+  if (!policy)
+    throw ParameterError("the exploration policy must not be null");
+  policy_ = std::move(policy);
+}
+
+void Recognizer::setMemory(std::shared_ptr<const PrototypeMemory> memory)
+{
+  if (!memory || memory->empty())
+    throw MemoryError("the recognizer needs a prototype memory with at least one prototype");
+  memory_ = std::move(memory);
+  reset();
+}
+
+void Recognizer::reset()
+{
+  rng_ = Rng(params_.seed);
+  v_.clear();
+  m_ = MParticleSet();
+  m_scratch_ = MParticleSet();
+  clusters_.clear();
+  leading_.clear();
+  previous_.clear();
+  tracks_.reset();
+  image_size_ = cv::Size();
+  iteration_ = 0;
+}
+
+RecognitionResult Recognizer::step(const cv::Mat& image)
+{
+  const auto start = std::chrono::steady_clock::now();
+  cv::Mat scan_image = prepareScanImage(image, params_.blur_sigma);  // throws InputError before any state changes
+  scan_image_ = scan_image;
+  const RadialScanner scanner(scan_image_, params_.edge_threshold, params_.max_ray_length);
+  if (v_.empty() || scan_image_.size() != image_size_)
+    seedAll(scanner);
+
+  // Paper 3.6: move every V-particle, predict and weight its M-particles, resample them.
+  ++iteration_;
+  for (int i = 0; i < static_cast<int>(v_.size()); ++i)
+    updateV(i, scanner);
+  std::swap(m_, m_scratch_);
+
+  RecognitionResult result;
+  result.objects = extractObjects(scanner);
+  for (const auto& c : clusters_)
+    result.converged_v_particles += c.share >= params_.cluster_min_share ? 1 : 0;
+  if (iteration_ % params_.v_resample_interval == 0)
+    resampleV(scanner);
+
+  tracks_.assign(result.objects);
+  result.iteration = iteration_;
+  result.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+void Recognizer::moveVParticles(const std::vector<cv::Point2f>& displacement)
+{
+  if (displacement.size() != v_.size())
+    throw InputError("moveVParticles: got " + std::to_string(displacement.size()) + " displacements for " +
+                     std::to_string(v_.size()) + " V-particles");
+  for (std::size_t i = 0; i < v_.size(); ++i)
+  {
+    if (!std::isfinite(displacement[i].x) || !std::isfinite(displacement[i].y))
+      throw InputError("moveVParticles: displacement " + std::to_string(i) + " is not finite");
+  }
+  const float max_x = static_cast<float>(std::max(0, image_size_.width - 1));
+  const float max_y = static_cast<float>(std::max(0, image_size_.height - 1));
+  for (std::size_t i = 0; i < v_.size(); ++i)
+  {
+    v_[i].x = std::min(std::max(v_[i].x + displacement[i].x, 0.f), max_x);
+    v_[i].y = std::min(std::max(v_[i].y + displacement[i].y, 0.f), max_y);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Seeding
+
+void Recognizer::seedAll(const RadialScanner& scanner)
+{
+  image_size_ = scanner.image().size();
+  per_v_ = params_.m_particles_per_prototype * static_cast<int>(memory_->size());
+  v_.assign(params_.num_v_particles, VParticle());
+  m_.resize(v_.size() * per_v_);
+  m_scratch_.resize(m_.size());
+  for (std::size_t i = 0; i < v_.size(); ++i)
+  {
+    seedV(v_[i], scanner);
+    seedMRange(m_, i * per_v_, (i + 1) * per_v_, v_[i].rays);
+  }
+  clusters_.clear();
+  leading_.clear();
+  previous_.clear();
+}
+
+// Spec "Where V-particles start matters": prefer places enclosed by edges
+// (inside closed regions), trying `seed_attempts` random places.
+void Recognizer::seedV(VParticle& v, const RadialScanner& scanner)
+{
+  int best_enclosure = -1;
+  for (int attempt = 0; attempt < params_.seed_attempts; ++attempt)
+  {
+    const float x = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.width - 2.0)));
+    const float y = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.height - 2.0)));
+    const float theta = static_cast<float>(rng_.uniform(-M_PI, M_PI));
+    // Rays that meet an edge, but not at once: texture is not a region.
+    int enclosure = 0;
+    RaySignature rays;
+    for (int k = 0; k < kFeatureRays; ++k)
+    {
+      const RayHit hit = scanner.scanAngle(x, y, theta + k * kFeatureBinStep * kBinAngle);
+      enclosure += (hit.valid && hit.distance >= kMinSeedRayLength) ? 1 : 0;
+      rays.distance[k] = hit.valid ? std::max(hit.distance, 1e-3f) : 0.f;
+    }
+    if (enclosure > best_enclosure)
+    {
+      best_enclosure = enclosure;
+      v = VParticle();
+      v.x = x;
+      v.y = y;
+      v.theta = theta;
+      v.rays = rays;
+    }
+    if (enclosure >= params_.seed_enclosure_rays)
+      break;
+  }
+}
+
+void Recognizer::seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const RaySignature& rays)
+{
+  const std::size_t count = end - begin;
+  const std::size_t prototypes = memory_->size();
+  for (std::size_t j = 0; j < count; ++j)
+    seedM(set, begin + j, static_cast<int>(j * prototypes / count), rays);
+}
+
+// A uniform position inside the prototype; the heading from the proposal
+// (heading_proposal.h) when the V-particle sees enough edges, else uniform.
+void Recognizer::seedM(MParticleSet& set, std::size_t index, int prototype, const RaySignature& rays)
+{
+  const Prototype& p = (*memory_)[prototype];
+  const cv::Point& at = p.interior()[rng_.index(p.interior().size())];
+  set.x[index] = static_cast<float>(at.x);
+  set.y[index] = static_cast<float>(at.y);
+  const int bin = bestHeadingBin(p, at.x, at.y, rays);
+  const double heading = bin >= 0 ? binToAngle(bin) : rng_.uniform(-M_PI, M_PI);
+  set.theta[index] = static_cast<float>(wrapAngle(heading));
+  set.prototype[index] = prototype;
+  for (auto& a : set.affine)
+    a[index] = 0.f;
+  set.affine_valid[index] = 0;
+  set.log_likelihood[index] = static_cast<float>(kFeatureRays * observation_.logInvalid());
+}
+
+// ---------------------------------------------------------------------------
+// One V-particle's iteration
+
+void Recognizer::updateV(int v_index, const RadialScanner& scanner)
+{
+  VParticle& v = v_[v_index];
+  const std::size_t begin = static_cast<std::size_t>(v_index) * per_v_, end = begin + per_v_;
+
+  // Control from the policy; the M-particles follow through their A (paper 4.2).
+  const double heading_before = v.theta;
+  const Control u = policy_->decide(v, scanner, rng_);
+  MotionModel::moveV(v, u);
+  v.theta = static_cast<float>(wrapAngle(v.theta));
+  motion_.moveM(m_, begin, end, heading_before, u, rng_);
+  ++v.age;
+
+  // The V-particle's measurement: 8 feature rays (k * 45 deg) and the two
+  // further triangle rays (120, 240 deg); ray 0 serves both.
+  float v_dist[kFeatureRays + 2];
+  bool v_valid[kFeatureRays + 2];
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const RayHit hit = scanner.scanAngle(v.x, v.y, v.theta + k * kFeatureBinStep * kBinAngle);
+    v_dist[k] = hit.distance;
+    v_valid[k] = hit.valid;
+    v.rays.distance[k] = hit.valid ? std::max(hit.distance, 1e-3f) : 0.f;
+  }
+  for (int t = 1; t < kTriangleRays; ++t)
+  {
+    const RayHit hit = scanner.scanAngle(v.x, v.y, v.theta + t * kTriangleBinStep * kBinAngle);
+    v_dist[kFeatureRays + t - 1] = hit.distance;
+    v_valid[kFeatureRays + t - 1] = hit.valid;
+  }
+  measureM(v_index, v_dist, v_valid);
+
+  // Evidence that v lies on an interpretable shape: the log of its
+  // M-particles' mean likelihood (spec "Resampling V").
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = begin; i < end; ++i)
+    top = std::max(top, static_cast<double>(m_.log_likelihood[i]));
+  double sum = 0.0;
+  for (std::size_t i = begin; i < end; ++i)
+    sum += std::exp(m_.log_likelihood[i] - top);
+  v.log_evidence_sum += top + std::log(sum / per_v_);
+  ++v.evidence_count;
+
+  resampleM(v_index);
+}
+
+// The update of every relational particle (v, m): the triangle affine of
+// paper 4.1 and the likelihood of eqs. 5-6.
+void Recognizer::measureM(int v_index, const float* v_dist, const bool* v_valid)
+{
+  const VParticle& v = v_[v_index];
+  const BinDirections& dir = binDirections();
+  const std::size_t begin = static_cast<std::size_t>(v_index) * per_v_, end = begin + per_v_;
+
+  // The V-particle's ray end points in the input image.
+  float vf_x[kFeatureRays], vf_y[kFeatureRays];
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const double a = v.theta + k * kFeatureBinStep * kBinAngle;
+    vf_x[k] = static_cast<float>(v.x + v_dist[k] * std::cos(a));
+    vf_y[k] = static_cast<float>(v.y + v_dist[k] * std::sin(a));
+  }
+  float vt_x[3] = {vf_x[0], 0, 0}, vt_y[3] = {vf_y[0], 0, 0};
+  for (int t = 1; t < kTriangleRays; ++t)
+  {
+    const double a = v.theta + t * kTriangleBinStep * kBinAngle;
+    vt_x[t] = static_cast<float>(v.x + v_dist[kFeatureRays + t - 1] * std::cos(a));
+    vt_y[t] = static_cast<float>(v.y + v_dist[kFeatureRays + t - 1] * std::sin(a));
+  }
+  const bool v_triangle = v_valid[0] && v_valid[kFeatureRays] && v_valid[kFeatureRays + 1];
+  int v_invalid_rays = 0;
+  for (int k = 0; k < kFeatureRays; ++k)
+    v_invalid_rays += v_valid[k] ? 0 : 1;
+
+  const float log_invalid = static_cast<float>(observation_.logInvalid());
+  const float all_invalid = kFeatureRays * log_invalid;
+  const float min_area = static_cast<float>(params_.min_triangle_area);
+  const float max_scale = static_cast<float>(params_.max_affine_scale);
+  const bool image_space = params_.deviation_space == DeviationSpace::kImage;
+  const float unit = Prototype::kDistanceUnit;
+
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    const Prototype& p = (*memory_)[m_.prototype[i]];
+    // Nearest table pixel (the offset keeps the rounding right for small negative values).
+    int xi = static_cast<int>(m_.x[i] + 1024.5f) - 1024, yi = static_cast<int>(m_.y[i] + 1024.5f) - 1024;
+    if (xi < 0 || yi < 0 || xi >= p.width() || yi >= p.height())
+    {
+      // Spec "Motion model": an M-particle that leaves its prototype is re-seeded.
+      seedM(m_, i, m_.prototype[i], v.rays);
+      xi = static_cast<int>(m_.x[i]);
+      yi = static_cast<int>(m_.y[i]);
+    }
+    m_.affine_valid[i] = 0;
+    if (!v_triangle)
+    {
+      m_.log_likelihood[i] = all_invalid;
+      continue;
+    }
+    const int bin = angleToBin(m_.theta[i]);
+    const std::uint8_t* raw = p.rawDistances(xi, yi);
+    float mt_x[3], mt_y[3];
+    bool m_triangle = true;
+    for (int t = 0; t < kTriangleRays; ++t)
+    {
+      const int b = (bin + t * kTriangleBinStep) % kDirectionBins;
+      if (raw[b] == Prototype::kNoEdge)
+      {
+        m_triangle = false;
+        break;
+      }
+      mt_x[t] = xi + raw[b] * unit * dir.cos[b];
+      mt_y[t] = yi + raw[b] * unit * dir.sin[b];
+    }
+    float b_map[6];  // prototype table -> image
+    if (!m_triangle || !affineFromTriangles(mt_x, mt_y, vt_x, vt_y, min_area, min_area, b_map))
+    {
+      m_.log_likelihood[i] = all_invalid;
+      continue;
+    }
+    // A physical print is never mirrored, and its scale stays within bounds.
+    const float det = b_map[0] * b_map[4] - b_map[1] * b_map[3];
+    const float frob = b_map[0] * b_map[0] + b_map[1] * b_map[1] + b_map[3] * b_map[3] + b_map[4] * b_map[4];
+    // Singular values s1 >= s2: s1^2 + s2^2 = frob, s1 s2 = det.
+    const float disc = std::sqrt(std::max(0.f, frob * frob - 4.f * det * det));
+    const float s1 = std::sqrt(0.5f * (frob + disc)), s2 = std::sqrt(std::max(0.f, 0.5f * (frob - disc)));
+    if (det <= 0.f || s1 > max_scale || s2 < 1.f / max_scale)
+    {
+      m_.log_likelihood[i] = all_invalid;
+      continue;
+    }
+    // A = B^-1: input image -> prototype table.
+    const float inv = 1.f / det;
+    const float a0 = b_map[4] * inv, a1 = -b_map[1] * inv, a3 = -b_map[3] * inv, a4 = b_map[0] * inv;
+    const float a2 = -(a0 * b_map[2] + a1 * b_map[5]), a5 = -(a3 * b_map[2] + a4 * b_map[5]);
+    m_.affine[0][i] = a0;
+    m_.affine[1][i] = a1;
+    m_.affine[2][i] = a2;
+    m_.affine[3][i] = a3;
+    m_.affine[4][i] = a4;
+    m_.affine[5][i] = a5;
+    m_.affine_valid[i] = 1;
+
+    // Paper eq. 6 over the 8 feature rays; dw_j of eq. 5 in input px (B p'_j - p_j)
+    // or, as in the paper, in prototype px (p'_j - A p_j).
+    float log_l = v_invalid_rays * log_invalid;
+    for (int k = 0; k < kFeatureRays; ++k)
+    {
+      if (!v_valid[k])
+        continue;
+      const int b = (bin + k * kFeatureBinStep) % kDirectionBins;
+      if (raw[b] == Prototype::kNoEdge)
+      {
+        log_l += log_invalid;
+        continue;
+      }
+      const float qx = xi + raw[b] * unit * dir.cos[b], qy = yi + raw[b] * unit * dir.sin[b];
+      float dx, dy;
+      if (image_space)
+      {
+        dx = b_map[0] * qx + b_map[1] * qy + b_map[2] - vf_x[k];
+        dy = b_map[3] * qx + b_map[4] * qy + b_map[5] - vf_y[k];
+      }
+      else
+      {
+        dx = a0 * vf_x[k] + a1 * vf_y[k] + a2 - qx;
+        dy = a3 * vf_x[k] + a4 * vf_y[k] + a5 - qy;
+      }
+      log_l += observation_.logRayFromSquared(dx * dx + dy * dy);
+    }
+    m_.log_likelihood[i] = log_l;
+  }
+}
+
+// SIR over all prototypes of R^-1(v) (paper 3.6), with a share re-seeded
+// uniformly and a share placed at the poses the leading hypotheses imply.
+void Recognizer::resampleM(int v_index)
+{
+  const VParticle& v = v_[v_index];
+  const std::size_t begin = static_cast<std::size_t>(v_index) * per_v_;
+  weight_scratch_.resize(per_v_);
+  float worst = std::numeric_limits<float>::infinity();
+  for (int j = 0; j < per_v_; ++j)
+  {
+    weight_scratch_[j] = m_.log_likelihood[begin + j];
+    worst = std::min(worst, m_.log_likelihood[begin + j]);
+  }
+  int n_inject = leading_.empty() ? 0 : static_cast<int>(std::lround(params_.injection_fraction * per_v_));
+  int n_reseed = static_cast<int>(std::lround(params_.m_reseed_fraction * per_v_));
+  n_inject = std::min(n_inject, per_v_);
+  n_reseed = std::min(n_reseed, per_v_ - n_inject);
+  const int n_draw = per_v_ - n_inject - n_reseed;
+
+  const std::vector<int> picks = systematicResampleLog(weight_scratch_, n_draw, rng_);
+  int k = 0;
+  for (; k < n_draw; ++k)
+    m_scratch_.copyFrom(m_, begin + picks[k], begin + k);
+  for (int j = 0; j < n_inject; ++j, ++k)
+  {
+    const LeadingHypothesis& h = leading_[j % leading_.size()];
+    const Affine& a = h.image_to_table;
+    const Prototype& p = (*memory_)[h.prototype];
+    const cv::Point2d at = applyAffine(a, cv::Point2d(v.x, v.y));
+    if (at.x < 0 || at.y < 0 || at.x > p.width() - 1 || at.y > p.height() - 1)
+    {
+      seedM(m_scratch_, begin + k, h.prototype, v.rays);
+      continue;
+    }
+    const double hx = std::cos(v.theta), hy = std::sin(v.theta);
+    m_scratch_.x[begin + k] = static_cast<float>(at.x + rng_.gaussian(params_.motion_noise_translation));
+    m_scratch_.y[begin + k] = static_cast<float>(at.y + rng_.gaussian(params_.motion_noise_translation));
+    m_scratch_.theta[begin + k] = static_cast<float>(std::atan2(a(1, 0) * hx + a(1, 1) * hy, a(0, 0) * hx + a(0, 1) * hy) +
+                                                     rng_.gaussian(params_.motion_noise_rotation));
+    m_scratch_.prototype[begin + k] = h.prototype;
+    for (int e = 0; e < 6; ++e)
+      m_scratch_.affine[e][begin + k] = static_cast<float>(a(e / 3, e % 3));
+    m_scratch_.affine_valid[begin + k] = 1;
+    m_scratch_.log_likelihood[begin + k] = worst;
+  }
+  for (int j = 0; j < n_reseed; ++j, ++k)
+    seedM(m_scratch_, begin + k, static_cast<int>(rng_.index(memory_->size())), v.rays);
+}
+
+// ---------------------------------------------------------------------------
+// V-resampling (paper 3.6, every w iterations; attention feedback, paper 4.3)
+
+void Recognizer::resampleV(const RadialScanner& scanner)
+{
+  const int n = static_cast<int>(v_.size());
+  std::vector<double> log_weights(n);
+  for (int i = 0; i < n; ++i)
+    log_weights[i] = v_[i].evidence_count > 0 ? v_[i].log_evidence_sum / v_[i].evidence_count
+                                              : -std::numeric_limits<double>::infinity();
+  const int n_reseed = std::min(n, static_cast<int>(std::lround(params_.v_reseed_fraction * n)));
+  const int n_draw = n - n_reseed;
+  const std::vector<int> picks = systematicResampleLog(log_weights, n_draw, rng_);
+
+  // A V-particle gets at most kMaxCopiesPerV copies per resampling, so that
+  // attention cannot collapse onto one region in a few rounds; the slots
+  // left over are seeded afresh.
+  std::vector<int> source(n, -1);
+  std::vector<int> copies(n, 0);
+  for (int k = 0; k < n_draw; ++k)
+    if (copies[picks[k]] < kMaxCopiesPerV)
+    {
+      source[k] = picks[k];
+      ++copies[picks[k]];
+    }
+
+  std::vector<VParticle> next(n);
+  std::vector<bool> used(n, false);
+  for (int k = 0; k < n; ++k)
+  {
+    const int from = source[k];
+    if (from < 0)
+    {
+      seedV(next[k], scanner);
+      seedMRange(m_scratch_, static_cast<std::size_t>(k) * per_v_, static_cast<std::size_t>(k + 1) * per_v_,
+                 next[k].rays);
+      continue;
+    }
+    next[k] = v_[from];
+    for (int j = 0; j < per_v_; ++j)
+      m_scratch_.copyFrom(m_, static_cast<std::size_t>(from) * per_v_ + j, static_cast<std::size_t>(k) * per_v_ + j);
+    if (used[from])
+    {
+      // A copy turns to a random heading so the copies explore apart; its
+      // M-particles turn with it through their A.
+      const Control turn{rng_.uniform(-M_PI, M_PI), 0.0};
+      motion_.moveM(m_scratch_, static_cast<std::size_t>(k) * per_v_, static_cast<std::size_t>(k + 1) * per_v_,
+                    next[k].theta, turn, rng_);
+      MotionModel::moveV(next[k], turn);
+      next[k].theta = static_cast<float>(wrapAngle(next[k].theta));
+    }
+    used[from] = true;
+  }
+  for (auto& v : next)
+  {
+    v.log_evidence_sum = 0.0;
+    v.evidence_count = 0;
+  }
+  v_ = std::move(next);
+  std::swap(m_, m_scratch_);
+  computeClusters();
+}
+
+// ---------------------------------------------------------------------------
+// Result extraction (spec "Output")
+
+void Recognizer::computeClusters()
+{
+  const int prototypes = static_cast<int>(memory_->size());
+  clusters_.resize(v_.size());
+  for (std::size_t i = 0; i < v_.size(); ++i)
+  {
+    clusters_[i] = dominantCluster(m_, i * per_v_, (i + 1) * per_v_, prototypes, params_.cluster_radius);
+    clusters_[i].v = static_cast<int>(i);
+  }
+}
+
+bool Recognizer::describeObject(int prototype, const Affine& table_to_image, const RadialScanner& scanner,
+                                RecognizedObject& object) const
+{
+  const Prototype& p = (*memory_)[prototype];
+  double smallest = 0, largest = 0;
+  affineScales(table_to_image, smallest, largest);
+  Affine image_to_table;
+  if (largest > params_.max_affine_scale || smallest < 1.0 / params_.max_affine_scale ||
+      !invertAffine(table_to_image, image_to_table))
+    return false;
+  object = RecognizedObject();
+  object.label = p.label();
+  object.prototype_id = prototype;
+  object.score = outlineSupport(p, scanner, table_to_image, kVerifyTolerance);
+  object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
+  object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
+  // Support: the converged V-particles whose cluster this affine explains.
+  for (const VParticleCluster& c : clusters_)
+  {
+    if (c.prototype != prototype || c.share < params_.cluster_min_share)
+      continue;
+    const cv::Point2d image_point(v_[c.v].x, v_[c.v].y);
+    const cv::Point2d predicted = applyAffine(table_to_image, cv::Point2d(c.mean));
+    if (std::hypot(predicted.x - image_point.x, predicted.y - image_point.y) > params_.group_tolerance)
+      continue;
+    object.correspondences.push_back({image_point, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean))});
+  }
+  object.support = static_cast<int>(object.correspondences.size());
+  for (const auto& o : p.outline())
+    object.outline.push_back(applyAffine(table_to_image, cv::Point2d(o.position)));
+  return true;
+}
+
+// Attention feedback from the verification: a converged V-particle whose
+// interpretation the whole outline confirms gains V-weight, one whose
+// interpretation the image contradicts loses it (the paper's V-weight,
+// "V-particles on clutter die out", made explicit).
+void Recognizer::feedVerification(const std::vector<RecognizedObject>& candidates)
+{
+  for (const VParticleCluster& c : clusters_)
+  {
+    if (c.share < params_.cluster_min_share)
+      continue;
+    double best = -1.0;
+    for (const RecognizedObject& object : candidates)
+    {
+      if (object.prototype_id != c.prototype || object.score <= best)
+        continue;
+      const Prototype& p = (*memory_)[c.prototype];
+      const cv::Point2d predicted = applyAffine(object.prototype_to_image, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean)));
+      if (std::hypot(predicted.x - v_[c.v].x, predicted.y - v_[c.v].y) <= params_.group_tolerance)
+        best = object.score;
+    }
+    if (best >= 0.0)
+      v_[c.v].log_evidence_sum += kVerificationGain * (best - 0.5);
+  }
+}
+
+std::vector<RecognizedObject> Recognizer::extractObjects(const RadialScanner& scanner)
+{
+  computeClusters();
+  // Every group is verified, even a single V-particle's: one that passes
+  // seeds the others through injection before it has the support to be reported.
+  std::vector<ObjectHypothesis> hypotheses = groupClusters(v_, clusters_, params_, 1);
+  if (hypotheses.size() > kMaxVerifiedHypotheses)
+    hypotheses.resize(kMaxVerifiedHypotheses);
+
+  // Starting points of the fit: each group's affine, and each object of the
+  // previous frame (recognition and tracking run together: a pose, once
+  // fitted, is refined on, not found again). A group near a previous object
+  // of its prototype tries both and keeps the better fit.
+  struct Start
+  {
+    int prototype;
+    std::vector<Affine> affines;
+  };
+  std::vector<Start> starts;
+  std::vector<bool> previous_used(previous_.size(), false);
+  for (const auto& h : hypotheses)
+  {
+    Start start{h.prototype, {h.table_to_image}};
+    const cv::Point2d centre = applyAffine(h.table_to_image, (*memory_)[h.prototype].centre());
+    for (std::size_t k = 0; k < previous_.size(); ++k)
+    {
+      const cv::Point2d previous_centre = applyAffine(previous_[k].table_to_image, (*memory_)[h.prototype].centre());
+      if (previous_[k].prototype == h.prototype &&
+          std::hypot(centre.x - previous_centre.x, centre.y - previous_centre.y) <= kTrackDistance)
+      {
+        start.affines.push_back(previous_[k].table_to_image);
+        previous_used[k] = true;
+      }
+    }
+    starts.push_back(std::move(start));
+  }
+  for (std::size_t k = 0; k < previous_.size(); ++k)
+    if (!previous_used[k])
+      starts.push_back({previous_[k].prototype, {previous_[k].table_to_image}});
+
+  std::vector<RecognizedObject> candidates;
+  for (const auto& start : starts)
+  {
+    const Prototype& p = (*memory_)[start.prototype];
+    RecognizedObject best;
+    bool found = false;
+    for (const Affine& affine : start.affines)
+    {
+      RecognizedObject object;
+      const Affine refined = refineOnEdges(p, scanner, affine, params_.refine_iterations, params_.refine_search);
+      if (describeObject(start.prototype, refined, scanner, object) && (!found || object.score > best.score))
+      {
+        best = std::move(object);
+        found = true;
+      }
+    }
+    if (found)
+      candidates.push_back(std::move(best));
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const RecognizedObject& a, const RecognizedObject& b) { return a.score > b.score; });
+  feedVerification(candidates);
+
+  // The leading hypotheses seed M-particles at the next iteration, reported or not.
+  leading_.clear();
+  for (const auto& c : candidates)
+  {
+    if (static_cast<int>(leading_.size()) >= kMaxLeadingHypotheses || c.score < 0.5 * params_.decision_threshold)
+      break;
+    const Prototype& p = (*memory_)[c.prototype_id];
+    leading_.push_back({c.prototype_id, composeAffine(c.image_to_prototype, p.originalToTable())});
+  }
+
+  // Report what passes the decision threshold; of two overlapping objects the better one.
+  std::vector<RecognizedObject> objects;
+  std::vector<cv::Rect2d> boxes;
+  previous_.clear();
+  for (auto& c : candidates)
+  {
+    // Hysteresis: an object recognized in the previous frame stays while its
+    // score keeps above a share of the threshold.
+    const double threshold = params_.decision_threshold * (tracks_.continues(c) ? kKeepTrackRatio : 1.0);
+    if (c.score < threshold || c.support < params_.min_support)
+      continue;
+    const cv::Rect2d box = boundsOf(c.outline);
+    bool suppressed = false;
+    for (const auto& b : boxes)
+      suppressed = suppressed || overlap(box, b) > 0.5;
+    if (suppressed)
+      continue;
+    boxes.push_back(box);
+    const Prototype& p = (*memory_)[c.prototype_id];
+    previous_.push_back({c.prototype_id, composeAffine(p.tableToOriginal(), c.prototype_to_image)});
+    objects.push_back(std::move(c));
+  }
+  return objects;
+}
+}  // namespace amcr

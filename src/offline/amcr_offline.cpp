@@ -1,0 +1,233 @@
+// amcr_offline: Radial-AMCR on recorded data (issue 2, item 4). One JSON line
+// per input frame; optionally an overlay video. See usageText() for the
+// command line, the output and the exit codes.
+//
+// Only this file decides exit codes: the library and the helpers throw.
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/core/utils/logger.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "amcr/errors.h"
+#include "amcr/overlay.h"
+#include "amcr/params.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/recognizer.h"
+#include "frame_source.h"
+#include "json_output.h"
+#include "runner_options.h"
+
+namespace
+{
+using namespace amcr::offline;
+
+constexpr const char* kProgram = "amcr_offline";
+constexpr int kExitError = 1;
+constexpr int kExitUsage = 2;
+constexpr double kDefaultOverlayFps = 10.0;
+
+/// One line: newlines and tabs become spaces, runs of spaces collapse.
+std::string oneLine(const std::string& text)
+{
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text)
+  {
+    const char s = (c == '\n' || c == '\r' || c == '\t') ? ' ' : c;
+    if (s == ' ' && (out.empty() || out.back() == ' '))
+      continue;
+    out += s;
+  }
+  while (!out.empty() && out.back() == ' ')
+    out.pop_back();
+  return out.empty() ? "unknown error" : out;
+}
+
+void reportError(const std::string& what) { std::cerr << kProgram << ": error: " << oneLine(what) << std::endl; }
+
+void reportWarning(const std::string& what)
+{
+  std::cerr << kProgram << ": warning: " << oneLine(what) << std::endl;
+}
+
+amcr::Params loadConfiguredParams(const RunnerOptions& options)
+{
+  amcr::Params params;
+  if (!options.config.empty())
+  {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(options.config, error))
+      throw std::runtime_error("config file '" + options.config + "' does not exist or is not a file");
+    try
+    {
+      params = amcr::loadParams(options.config);
+    }
+    catch (const cv::Exception& e)
+    {
+      throw std::runtime_error("cannot parse config file '" + options.config + "': " + e.err);
+    }
+  }
+  if (options.has_seed)
+    params.seed = options.seed;
+  params.validate();
+  return params;
+}
+
+/// Writes overlay frames; the video is opened at the first frame, whose size
+/// all later frames are scaled to.
+class OverlayVideo
+{
+public:
+  OverlayVideo(std::string path, double fps) : path_(std::move(path)), fps_(fps) {}
+
+  void write(const cv::Mat& frame)
+  {
+    if (!writer_.isOpened())
+    {
+      const std::string fourcc = overlayFourcc(path_);
+      writer_.open(path_, cv::VideoWriter::fourcc(fourcc[0], fourcc[1], fourcc[2], fourcc[3]), fps_, frame.size(),
+                   true);
+      if (!writer_.isOpened())
+        throw std::runtime_error("cannot open overlay video '" + path_ + "' for writing (codec " + fourcc + ")");
+      size_ = frame.size();
+    }
+    if (frame.size() == size_)
+      writer_.write(frame);
+    else
+    {
+      cv::Mat scaled;
+      cv::resize(frame, scaled, size_, 0, 0, cv::INTER_AREA);
+      writer_.write(scaled);
+    }
+  }
+
+  void close() { writer_.release(); }
+
+private:
+  std::string path_;
+  double fps_;
+  cv::VideoWriter writer_;
+  cv::Size size_;
+};
+
+int run(const RunnerOptions& options)
+{
+  // Cheap checks first, the prototype tables last.
+  const amcr::Params params = loadConfiguredParams(options);
+  std::unique_ptr<FrameSource> source = FrameSource::open(
+      options.input, options.has_frames ? options.frames : kDefaultSingleImageFrames, options.has_frames);
+
+  std::ofstream file;
+  std::ostream* out = &std::cout;
+  std::string destination = "standard output";
+  if (!options.output.empty())
+  {
+    file.open(options.output, std::ios::out | std::ios::trunc);
+    if (!file)
+      throw std::runtime_error("cannot open output file '" + options.output + "' for writing");
+    out = &file;
+    destination = "'" + options.output + "'";
+  }
+
+  // The overlay video opens at the first frame (its size is known then);
+  // catch a missing folder before any work.
+  if (!options.overlay.empty())
+  {
+    const std::filesystem::path folder = std::filesystem::path(options.overlay).parent_path();
+    std::error_code error;
+    if (!folder.empty() && !std::filesystem::is_directory(folder, error))
+      throw std::runtime_error("cannot write overlay video '" + options.overlay + "': folder '" + folder.string() +
+                               "' does not exist");
+  }
+
+  auto memory = std::make_shared<amcr::PrototypeMemory>(
+      amcr::PrototypeMemory::loadDirectory(options.prototypes, params, reportWarning));
+  amcr::Recognizer recognizer(params, memory);
+
+  std::unique_ptr<OverlayVideo> overlay;
+  if (!options.overlay.empty())
+    overlay = std::make_unique<OverlayVideo>(options.overlay, source->fps() > 0.0 ? source->fps() : kDefaultOverlayFps);
+
+  long processed = 0;
+  Frame frame;
+  while (source->next(frame))
+  {
+    if (frame.image.empty())
+    {
+      reportWarning("frame " + std::to_string(frame.index) + " skipped: " + frame.problem);
+      writeJsonLine(*out, skippedFrameJson(frame.index, recognizer.iteration(), frame.problem), destination);
+      continue;
+    }
+    amcr::RecognitionResult result;
+    const auto start = std::chrono::steady_clock::now();
+    try
+    {
+      result = recognizer.step(frame.image);
+    }
+    catch (const amcr::InputError& e)
+    {
+      throw amcr::InputError("frame " + std::to_string(frame.index) + " (" + frame.name + "): " + e.what());
+    }
+    const double time_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    writeJsonLine(*out, frameJson(frame.index, time_ms, result), destination);
+    if (overlay)
+      overlay->write(amcr::drawOverlay(frame.image, recognizer, result));
+    ++processed;
+  }
+  if (overlay)
+    overlay->close();
+  if (processed == 0)
+    throw std::runtime_error("no frame of input '" + options.input + "' could be read");
+  return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  // OpenCV logs its backends' failures (a video backend refusing a file) over
+  // several lines; the runner reports problems itself, in one line. The
+  // environment variable OPENCV_LOG_LEVEL still takes precedence.
+  if (std::getenv("OPENCV_LOG_LEVEL") == nullptr)
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  try
+  {
+    const RunnerOptions options = parseRunnerOptions(std::vector<std::string>(argv + 1, argv + argc));
+    if (options.help)
+    {
+      std::cout << usageText();
+      return 0;
+    }
+    return run(options);
+  }
+  catch (const UsageError& e)
+  {
+    reportError(std::string(e.what()) + " (see --help)");
+    return kExitUsage;
+  }
+  catch (const cv::Exception& e)
+  {
+    reportError("OpenCV: " + e.err + (e.func.empty() ? "" : " (in " + e.func + ")"));
+    return kExitError;
+  }
+  catch (const std::exception& e)
+  {
+    reportError(e.what());
+    return kExitError;
+  }
+  catch (...)
+  {
+    reportError("unknown error");
+    return kExitError;
+  }
+}

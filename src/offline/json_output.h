@@ -1,0 +1,47 @@
+// amcr_offline's output: one JSON object per input frame, one per line,
+// written by hand (no JSON library in the dependencies):
+//   {"frame": 0, "time_ms": 3.100, "iteration": 1, "objects": [{"label": "bird-1",
+//    "track_id": 1, "score": 0.9300, "support": 17,
+//    "image_to_prototype": [[a, b, c], [d, e, f]], "prototype_to_image": [[a, b, c], [d, e, f]],
+//    "correspondences": [[xi, yi, xp, yp], ...]}]}
+// Other tools read these names: keep them.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include "amcr/recognition_result.h"
+
+namespace amcr
+{
+namespace offline
+{
+/// Digits after the decimal point, per kind of number.
+constexpr int kTimeDecimals = 3;    ///< time_ms
+constexpr int kScoreDecimals = 4;   ///< score in [0, 1]
+constexpr int kAffineDecimals = 6;  ///< affine matrix entries
+constexpr int kPixelDecimals = 2;   ///< correspondence coordinates, px
+
+/// A quoted JSON string. Escapes '"', '\\' and control characters (as \n,
+/// \t, ... or \u00XX); valid UTF-8 passes through, each byte of an invalid
+/// UTF-8 sequence becomes U+FFFD, so the output is always valid JSON.
+std::string jsonString(const std::string& text);
+
+/// A number in fixed notation with `decimals` digits after the point,
+/// independent of the locale; "-0.00" is written "0.00". Not-a-number and
+/// infinities, which JSON cannot hold, are written as null.
+std::string jsonNumber(double value, int decimals);
+
+/// The line of a processed frame (without the newline). `time_ms` is the
+/// time the recognition step took.
+std::string frameJson(long frame, double time_ms, const RecognitionResult& result);
+
+/// The line of a frame that could not be read: no step ran, `iteration` is
+/// the recognizer's unchanged count, "skipped" gives the reason.
+std::string skippedFrameJson(long frame, long iteration, const std::string& reason);
+
+/// Writes `json` and a newline, flushes, and throws std::runtime_error naming
+/// `destination` when the stream fails (disk full, closed pipe).
+void writeJsonLine(std::ostream& out, const std::string& json, const std::string& destination);
+}  // namespace offline
+}  // namespace amcr

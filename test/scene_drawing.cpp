@@ -1,0 +1,381 @@
+#include "scene_drawing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <random>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+namespace amcr_test
+{
+namespace
+{
+constexpr int kSupersampling = 4;  // per axis
+constexpr int kFixedPointBits = 4; // sub-pixel bits passed to cv::fillPoly
+
+std::vector<cv::Point2d> polarPolygon(const cv::Point2d& centre, const std::vector<double>& angles_deg,
+                                      const std::vector<double>& radii)
+{
+  std::vector<cv::Point2d> out;
+  for (std::size_t i = 0; i < angles_deg.size(); ++i)
+  {
+    const double a = angles_deg[i] * M_PI / 180.0;
+    out.emplace_back(centre.x + radii[i] * std::cos(a), centre.y + radii[i] * std::sin(a));
+  }
+  return out;
+}
+
+// An ellipse minus a disc that is off the ellipse's axes: no symmetry left.
+std::vector<cv::Point2d> crescentPolygon()
+{
+  const cv::Point2d ec(100.0, 104.0);
+  const double rx = 90.0, ry = 70.0, tilt = 25.0 * M_PI / 180.0;
+  const cv::Point2d dc(125.0, 72.0);
+  const double dr = 60.0;
+  const auto in_disc = [&](const cv::Point2d& p) { return std::hypot(p.x - dc.x, p.y - dc.y) < dr; };
+  const auto in_ellipse = [&](const cv::Point2d& p) {
+    const double x = p.x - ec.x, y = p.y - ec.y;
+    const double u = std::cos(tilt) * x + std::sin(tilt) * y;
+    const double v = -std::sin(tilt) * x + std::cos(tilt) * y;
+    return (u * u) / (rx * rx) + (v * v) / (ry * ry) < 1.0;
+  };
+  const int n = 720;
+  std::vector<cv::Point2d> outer(n), inner(n);
+  for (int i = 0; i < n; ++i)
+  {
+    const double t = 2.0 * M_PI * i / n;
+    const double u = rx * std::cos(t), v = ry * std::sin(t);
+    outer[i] = {ec.x + std::cos(tilt) * u - std::sin(tilt) * v, ec.y + std::sin(tilt) * u + std::cos(tilt) * v};
+    inner[i] = {dc.x + dr * std::cos(t), dc.y + dr * std::sin(t)};
+  }
+  // The run of the ellipse outside the disc, then the run of the circle inside
+  // the ellipse, walked backwards: one simple closed outline.
+  const auto run = [n](const std::vector<cv::Point2d>& pts, const std::function<bool(const cv::Point2d&)>& keep) {
+    int start = -1;
+    for (int i = 0; i < n; ++i)
+      if (keep(pts[i]) && !keep(pts[(i + n - 1) % n]))
+        start = i;
+    if (start < 0)
+      throw std::logic_error("crescent: the disc does not cut the ellipse");
+    std::vector<cv::Point2d> out;
+    for (int k = 0; k < n && keep(pts[(start + k) % n]); ++k)
+      out.push_back(pts[(start + k) % n]);
+    return out;
+  };
+  std::vector<cv::Point2d> poly = run(outer, [&](const cv::Point2d& p) { return !in_disc(p); });
+  std::vector<cv::Point2d> bite = run(inner, in_ellipse);
+  poly.insert(poly.end(), bite.rbegin(), bite.rend());
+  return poly;
+}
+
+double clampGrey(double v) { return std::min(255.0, std::max(0.0, v)); }
+
+cv::Rect2d boundsOf(const std::vector<cv::Point2d>& pts)
+{
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const auto& p : pts)
+  {
+    x0 = std::min(x0, p.x);
+    y0 = std::min(y0, p.y);
+    x1 = std::max(x1, p.x);
+    y1 = std::max(y1, p.y);
+  }
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+// A random distractor (not any memory shape) centred on `c` with radius `r`.
+std::vector<cv::Point2d> randomShape(std::mt19937_64& gen, const cv::Point2d& c, double r)
+{
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  const int kind = static_cast<int>(u01(gen) * 3.0);
+  const double rot = u01(gen) * 2.0 * M_PI;
+  std::vector<cv::Point2d> local;
+  if (kind == 0)  // star-shaped blob with 5-9 vertices
+  {
+    const int n = 5 + static_cast<int>(u01(gen) * 5.0);
+    for (int i = 0; i < n; ++i)
+    {
+      const double a = 2.0 * M_PI * (i + 0.8 * (u01(gen) - 0.5)) / n;
+      const double rr = r * (0.45 + 0.55 * u01(gen));
+      local.emplace_back(rr * std::cos(a), rr * std::sin(a));
+    }
+  }
+  else if (kind == 1)  // ellipse
+  {
+    const double ry = r * (0.3 + 0.7 * u01(gen));
+    for (int i = 0; i < 48; ++i)
+    {
+      const double a = 2.0 * M_PI * i / 48;
+      local.emplace_back(r * std::cos(a), ry * std::sin(a));
+    }
+  }
+  else  // box
+  {
+    const double h = r * (0.25 + 0.75 * u01(gen));
+    local = {{-r, -h}, {r, -h}, {r, h}, {-r, h}};
+  }
+  std::vector<cv::Point2d> out;
+  for (const auto& p : local)
+    out.emplace_back(c.x + std::cos(rot) * p.x - std::sin(rot) * p.y, c.y + std::sin(rot) * p.x + std::cos(rot) * p.y);
+  return out;
+}
+}  // namespace
+
+const std::vector<ShapeId>& allShapes()
+{
+  static const std::vector<ShapeId> shapes = {ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar, ShapeId::kEll,
+                                              ShapeId::kFlag};
+  return shapes;
+}
+
+std::string shapeName(ShapeId id)
+{
+  switch (id)
+  {
+    case ShapeId::kArrow:
+      return "arrow";
+    case ShapeId::kCrescent:
+      return "crescent";
+    case ShapeId::kStar:
+      return "star";
+    case ShapeId::kEll:
+      return "ell";
+    case ShapeId::kFlag:
+      return "flag";
+  }
+  return "unknown";
+}
+
+std::vector<cv::Point2d> shapePolygon(ShapeId id)
+{
+  switch (id)
+  {
+    case ShapeId::kArrow:
+      return {{15, 84}, {104, 84}, {92, 34}, {188, 96}, {124, 154}, {117, 121}, {15, 121}, {42, 103}};
+    case ShapeId::kCrescent:
+      return crescentPolygon();
+    case ShapeId::kStar:
+    {
+      // Tips at uneven angles and radii, valleys at uneven depths.
+      const std::vector<double> angles = {-92, -55, -18, 20, 52, 90, 128, 165, 205, 240};
+      const std::vector<double> radii = {90, 36, 72, 30, 84, 42, 62, 33, 88, 40};
+      return polarPolygon({100.0, 102.0}, angles, radii);
+    }
+    case ShapeId::kEll:
+      return {{25, 15}, {62, 15}, {88, 42}, {88, 142}, {140, 142}, {168, 186}, {25, 186}};
+    case ShapeId::kFlag:
+      return {{30, 12}, {46, 12}, {46, 20}, {178, 46}, {46, 98}, {46, 188}, {30, 188}};
+  }
+  return {};
+}
+
+cv::Mat drawPrototype(ShapeId id, bool white_on_black, bool antialiased)
+{
+  cv::Mat image(kPrototypeImageSize, kPrototypeImageSize, CV_8UC1, cv::Scalar(white_on_black ? 0 : 255));
+  fillPolygon(image, shapePolygon(id), white_on_black ? 255.0 : 0.0, antialiased);
+  return image;
+}
+
+void fillPolygon(cv::Mat& image, const std::vector<cv::Point2d>& polygon, double value, bool antialiased)
+{
+  CV_Assert(image.type() == CV_8UC1 && polygon.size() >= 3);
+  const cv::Rect2d b = boundsOf(polygon);
+  const cv::Rect roi = cv::Rect(static_cast<int>(std::floor(b.x)) - 2, static_cast<int>(std::floor(b.y)) - 2,
+                                static_cast<int>(std::ceil(b.width)) + 5, static_cast<int>(std::ceil(b.height)) + 5) &
+                       cv::Rect(0, 0, image.cols, image.rows);
+  if (roi.area() == 0)
+    return;
+  const int s = antialiased ? kSupersampling : 1;
+  const double fixed = 1 << kFixedPointBits;
+  // Low-res pixel centre i covers high-res pixels s*i .. s*i+s-1, whose mean
+  // centre is s*i + (s-1)/2.
+  std::vector<cv::Point> pts;
+  for (const auto& p : polygon)
+    pts.emplace_back(static_cast<int>(std::lround(((p.x - roi.x) * s + (s - 1) / 2.0) * fixed)),
+                     static_cast<int>(std::lround(((p.y - roi.y) * s + (s - 1) / 2.0) * fixed)));
+  cv::Mat coverage(roi.height * s, roi.width * s, CV_8UC1, cv::Scalar(0));
+  const std::vector<std::vector<cv::Point>> contours = {pts};
+  cv::fillPoly(coverage, contours, cv::Scalar(255), cv::LINE_8, kFixedPointBits);
+  cv::Mat alpha;
+  if (s > 1)
+    cv::resize(coverage, alpha, roi.size(), 0, 0, cv::INTER_AREA);
+  else
+    alpha = coverage;
+  cv::Mat target = image(roi);
+  for (int y = 0; y < roi.height; ++y)
+    for (int x = 0; x < roi.width; ++x)
+    {
+      const double a = alpha.at<uchar>(y, x) / 255.0;
+      uchar& px = target.at<uchar>(y, x);
+      px = cv::saturate_cast<uchar>((1.0 - a) * px + a * value);
+    }
+}
+
+std::vector<cv::Point2d> transformPoints(const amcr::Affine& a, const std::vector<cv::Point2d>& points)
+{
+  std::vector<cv::Point2d> out;
+  out.reserve(points.size());
+  for (const auto& p : points)
+    out.push_back(amcr::applyAffine(a, p));
+  return out;
+}
+
+amcr::Affine makeAffine(const cv::Point2d& prototype_centre, const cv::Point2d& image_centre, double rotation,
+                        double scale_x, double scale_y, double shear)
+{
+  const cv::Matx22d r(std::cos(rotation), -std::sin(rotation), std::sin(rotation), std::cos(rotation));
+  const cv::Matx22d sh(1.0, shear, 0.0, 1.0);
+  const cv::Matx22d sc(scale_x, 0.0, 0.0, scale_y);
+  const cv::Matx22d l = r * sh * sc;
+  const cv::Vec2d t = cv::Vec2d(image_centre.x, image_centre.y) - l * cv::Vec2d(prototype_centre.x, prototype_centre.y);
+  return amcr::Affine(l(0, 0), l(0, 1), t[0], l(1, 0), l(1, 1), t[1]);
+}
+
+cv::Point2d prototypeCentre() { return {(kPrototypeImageSize - 1) / 2.0, (kPrototypeImageSize - 1) / 2.0}; }
+
+cv::Mat renderClean(const Scene& scene)
+{
+  const Clutter& c = scene.clutter;
+  std::mt19937_64 gen(c.seed);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+
+  // Background with a linear brightness gradient in a random direction.
+  cv::Mat image(scene.size, CV_8UC1);
+  const double dir = u01(gen) * 2.0 * M_PI;
+  const double half_diag = 0.5 * std::hypot(scene.size.width, scene.size.height);
+  for (int y = 0; y < image.rows; ++y)
+    for (int x = 0; x < image.cols; ++x)
+    {
+      const double along = (std::cos(dir) * (x - 0.5 * image.cols) + std::sin(dir) * (y - 0.5 * image.rows)) / half_diag;
+      image.at<uchar>(y, x) = cv::saturate_cast<uchar>(clampGrey(c.background + 0.5 * c.gradient * along));
+    }
+
+  // Regions the distractor shapes keep away from.
+  std::vector<cv::Rect2d> keep_out;
+  for (const Placement& p : scene.objects)
+  {
+    cv::Rect2d b = boundsOf(transformPoints(p.prototype_to_image, shapePolygon(p.shape)));
+    keep_out.emplace_back(b.x - c.keep_out, b.y - c.keep_out, b.width + 2 * c.keep_out, b.height + 2 * c.keep_out);
+  }
+  const auto free_place = [&](const std::vector<cv::Point2d>& poly) {
+    const cv::Rect2d b = boundsOf(poly);
+    if (b.x < 2 || b.y < 2 || b.x + b.width > scene.size.width - 3 || b.y + b.height > scene.size.height - 3)
+      return false;
+    for (const auto& k : keep_out)
+      if ((b & k).area() > 0)
+        return false;
+    return true;
+  };
+
+  // Distractor shapes: random polygons, ellipses and boxes, then silhouettes.
+  for (int i = 0; i < c.random_shapes; ++i)
+  {
+    for (int attempt = 0; attempt < 200; ++attempt)
+    {
+      const cv::Point2d centre(u01(gen) * scene.size.width, u01(gen) * scene.size.height);
+      const double radius = 18.0 + 37.0 * u01(gen);
+      const double grey = 20.0 + 110.0 * u01(gen);
+      const std::vector<cv::Point2d> poly = randomShape(gen, centre, radius);
+      if (!free_place(poly))
+        continue;
+      fillPolygon(image, poly, grey);
+      break;
+    }
+  }
+  for (ShapeId id : c.silhouettes)
+  {
+    for (int attempt = 0; attempt < 400; ++attempt)
+    {
+      const cv::Point2d centre(u01(gen) * scene.size.width, u01(gen) * scene.size.height);
+      const double scale = 0.4 + 0.35 * u01(gen);
+      const amcr::Affine a = makeAffine(prototypeCentre(), centre, u01(gen) * 2.0 * M_PI, scale,
+                                        scale * (0.8 + 0.4 * u01(gen)), 0.4 * (u01(gen) - 0.5));
+      const double grey = 20.0 + 90.0 * u01(gen);
+      const std::vector<cv::Point2d> poly = transformPoints(a, shapePolygon(id));
+      if (!free_place(poly))
+        continue;
+      fillPolygon(image, poly, grey);
+      break;
+    }
+  }
+
+  // Lines anywhere; the objects are drawn over them.
+  for (int i = 0; i < c.lines; ++i)
+  {
+    const cv::Point p0(static_cast<int>(u01(gen) * scene.size.width), static_cast<int>(u01(gen) * scene.size.height));
+    const cv::Point p1(static_cast<int>(u01(gen) * scene.size.width), static_cast<int>(u01(gen) * scene.size.height));
+    const int thickness = 1 + static_cast<int>(u01(gen) * 3.0);
+    const double grey = 20.0 + 110.0 * u01(gen);
+    cv::line(image, p0, p1, cv::Scalar(grey), thickness, cv::LINE_AA);
+  }
+
+  for (const Placement& p : scene.objects)
+    fillPolygon(image, transformPoints(p.prototype_to_image, shapePolygon(p.shape)), p.grey);
+  return image;
+}
+
+cv::Mat addNoise(const cv::Mat& clean, double sigma, std::uint64_t seed)
+{
+  CV_Assert(clean.type() == CV_8UC1);
+  if (sigma <= 0.0)
+    return clean.clone();
+  cv::Mat noise(clean.size(), CV_32FC1);
+  cv::RNG rng(seed);
+  rng.fill(noise, cv::RNG::NORMAL, 0.0, sigma);
+  cv::Mat f;
+  clean.convertTo(f, CV_32FC1);
+  f += noise;
+  cv::Mat out;
+  f.convertTo(out, CV_8UC1);  // rounds and saturates
+  return out;
+}
+
+std::vector<cv::Mat> renderSequence(const Scene& scene, int frames)
+{
+  const cv::Mat clean = renderClean(scene);
+  std::vector<cv::Mat> out;
+  for (int k = 0; k < frames; ++k)
+    out.push_back(addNoise(clean, scene.clutter.noise_sigma, scene.clutter.seed * 1000 + static_cast<std::uint64_t>(k)));
+  return out;
+}
+
+std::vector<cv::Point2d> imageCorners(const cv::Size& size)
+{
+  const double w = size.width - 1.0, h = size.height - 1.0;
+  return {{0.0, 0.0}, {w, 0.0}, {w, h}, {0.0, h}};
+}
+
+double cornerError(const amcr::Affine& reported, const amcr::Affine& truth, const cv::Size& prototype_size)
+{
+  double sum = 0.0;
+  const std::vector<cv::Point2d> corners = imageCorners(prototype_size);
+  for (const auto& c : corners)
+  {
+    const cv::Point2d d = amcr::applyAffine(reported, c) - amcr::applyAffine(truth, c);
+    sum += std::hypot(d.x, d.y);
+  }
+  return sum / corners.size();
+}
+
+TempDir::TempDir()
+{
+  std::string pattern = (std::filesystem::temp_directory_path() / "amcr_test_XXXXXX").string();
+  std::vector<char> buffer(pattern.begin(), pattern.end());
+  buffer.push_back('\0');
+  if (!mkdtemp(buffer.data()))
+    throw std::runtime_error("cannot create a temporary directory from " + pattern);
+  path_ = buffer.data();
+}
+
+TempDir::~TempDir()
+{
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+std::string TempDir::file(const std::string& name) const { return path_ + "/" + name; }
+}  // namespace amcr_test

@@ -1,0 +1,130 @@
+// Test inputs drawn in code (style point 9): prototype silhouettes, scenes
+// that show them under a known affine over clutter, and the corner error
+// that the end-to-end tests measure. Everything random takes an explicit
+// seed, so a scene is the same on every machine and every run.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "amcr/affine.h"
+
+namespace amcr_test
+{
+/// The silhouettes. None has a mirror or rotational symmetry, so the affine
+/// between a silhouette and its image is unique.
+enum class ShapeId
+{
+  kArrow,     ///< an arrow with uneven barbs and a notched tail
+  kCrescent,  ///< an ellipse minus an off-axis disc, uneven horns
+  kStar,      ///< an irregular five-pointed star
+  kEll,       ///< an "L" with uneven arms and a chamfered top
+  kFlag,      ///< a pole with a triangular pennant
+};
+
+/// Every shape, in enum order.
+const std::vector<ShapeId>& allShapes();
+
+/// "arrow", "crescent", ...: the label a test gives the shape's prototype.
+std::string shapeName(ShapeId id);
+
+/// For gtest's parameter printing.
+inline void PrintTo(ShapeId id, std::ostream* os) { *os << shapeName(id); }
+
+/// Side of a prototype image, px.
+constexpr int kPrototypeImageSize = 200;
+
+/// The shape's outline, a simple polygon in prototype-image px (OpenCV
+/// pixel-centre convention: pixel (i, j) is centred on (i, j)).
+std::vector<cv::Point2d> shapePolygon(ShapeId id);
+
+/// The prototype image: kPrototypeImageSize x kPrototypeImageSize, CV_8UC1,
+/// the filled shape at 255 on 0 (white_on_black) or 0 on 255. Antialiased
+/// edges unless `antialiased` is false (then only 0 and 255 occur).
+cv::Mat drawPrototype(ShapeId id, bool white_on_black = true, bool antialiased = true);
+
+/// Fills `polygon` (px of `image`, pixel-centre convention) with grey level
+/// `value` into a CV_8UC1 image. Antialiased by 4x4 supersampling (exact
+/// area coverage up to 1/16 px^2), or hard-edged.
+void fillPolygon(cv::Mat& image, const std::vector<cv::Point2d>& polygon, double value, bool antialiased = true);
+
+/// Maps each point by an affine.
+std::vector<cv::Point2d> transformPoints(const amcr::Affine& a, const std::vector<cv::Point2d>& points);
+
+/// A prototype -> image affine: x' = image_centre + R(rotation) * [1 shear; 0 1]
+/// * diag(scale_x, scale_y) * (x - prototype_centre). Rotation in rad.
+amcr::Affine makeAffine(const cv::Point2d& prototype_centre, const cv::Point2d& image_centre, double rotation,
+                        double scale_x, double scale_y, double shear);
+
+/// The centre of the prototype image, px.
+cv::Point2d prototypeCentre();
+
+/// One memory shape placed in a scene.
+struct Placement
+{
+  ShapeId shape = ShapeId::kArrow;
+  amcr::Affine prototype_to_image = amcr::identityAffine();  ///< prototype px -> image px
+  double grey = 35.0;                                        ///< fill grey level (dark on light, like a print)
+};
+
+/// What surrounds the objects. All of it is drawn from `seed`.
+struct Clutter
+{
+  int random_shapes = 7;  ///< random star-shaped polygons, ellipses and boxes (none in any memory)
+  std::vector<ShapeId> silhouettes;  ///< extra silhouettes drawn as distractors, under a random affine
+  int lines = 10;                    ///< random straight lines, 1-3 px thick
+  double noise_sigma = 6.0;          ///< Gaussian pixel noise, grey levels (new per frame)
+  double background = 195.0;         ///< mean background grey level
+  double gradient = 60.0;            ///< background grey-level change across the image, in a random direction
+  double keep_out = 25.0;            ///< distractor shapes stay this far (px) from the objects' bounding boxes
+  std::uint64_t seed = 1;
+};
+
+struct Scene
+{
+  cv::Size size{640, 480};
+  std::vector<Placement> objects;
+  Clutter clutter;
+};
+
+/// The scene without noise: gradient background, distractor shapes and lines,
+/// then the objects on top (so nothing occludes them). CV_8UC1.
+cv::Mat renderClean(const Scene& scene);
+
+/// Adds Gaussian noise of `sigma` grey levels drawn from `seed` (saturated to 8 bit).
+cv::Mat addNoise(const cv::Mat& clean, double sigma, std::uint64_t seed);
+
+/// `frames` frames of a static scene, each with its own noise (seed = clutter.seed * 1000 + frame).
+std::vector<cv::Mat> renderSequence(const Scene& scene, int frames);
+
+/// The four corners of a prototype image of `size` (pixel-centre convention):
+/// (0,0), (w-1,0), (w-1,h-1), (0,h-1).
+std::vector<cv::Point2d> imageCorners(const cv::Size& size);
+
+/// Mean distance, px, between the corners of a prototype image of `prototype_size`
+/// mapped by `reported` and by `truth` (both prototype px -> image px).
+double cornerError(const amcr::Affine& reported, const amcr::Affine& truth,
+                   const cv::Size& prototype_size = cv::Size(kPrototypeImageSize, kPrototypeImageSize));
+
+/// A fresh directory under the system temp directory, removed with its
+/// contents on destruction.
+class TempDir
+{
+public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const std::string& path() const { return path_; }
+  /// path() + "/" + name
+  std::string file(const std::string& name) const;
+
+private:
+  std::string path_;
+};
+}  // namespace amcr_test

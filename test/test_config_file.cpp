@@ -1,0 +1,37 @@
+// config/amcr.yaml is the documented set of parameters: it must hold every
+// parameter of amcr::Params, each at its default, and load cleanly.
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "amcr/params.h"
+
+namespace
+{
+const std::string kConfigPath = std::string(AMCR_SOURCE_DIR) + "/config/amcr.yaml";
+
+TEST(ConfigFile, HoldsEveryParameterAtItsDefault)
+{
+  cv::FileStorage storage(kConfigPath, cv::FileStorage::READ);
+  ASSERT_TRUE(storage.isOpened()) << "cannot read " << kConfigPath;
+  const amcr::Params defaults;
+  for (const amcr::ParameterInfo& info : amcr::parameterTable())
+  {
+    const cv::FileNode node = storage[info.name];
+    ASSERT_FALSE(node.empty()) << info.name << " is missing from " << kConfigPath;
+    EXPECT_DOUBLE_EQ(static_cast<double>(node), amcr::getParameter(defaults, info.name))
+        << info.name << " in " << kConfigPath << " differs from the default in params.h";
+  }
+  EXPECT_EQ(static_cast<std::string>(storage["likelihood_form"]), amcr::toString(defaults.likelihood_form));
+  EXPECT_EQ(static_cast<std::string>(storage["deviation_space"]), amcr::toString(defaults.deviation_space));
+}
+
+TEST(ConfigFile, LoadsWithoutError)
+{
+  const amcr::Params loaded = amcr::loadParams(kConfigPath);
+  const amcr::Params defaults;
+  for (const amcr::ParameterInfo& info : amcr::parameterTable())
+    EXPECT_DOUBLE_EQ(amcr::getParameter(loaded, info.name), amcr::getParameter(defaults, info.name)) << info.name;
+}
+}  // namespace

@@ -1,0 +1,216 @@
+// amcr_offline's JSON writer and option parser, compiled directly.
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "json_output.h"
+#include "mini_json.h"
+#include "runner_options.h"
+
+using amcr::offline::frameJson;
+using amcr::offline::jsonNumber;
+using amcr::offline::jsonString;
+using amcr::offline::parseRunnerOptions;
+using amcr::offline::RunnerOptions;
+using amcr::offline::skippedFrameJson;
+using amcr::offline::UsageError;
+using amcr_test::Json;
+using amcr_test::JsonParser;
+
+namespace
+{
+/// Parses `text` as one JSON string value and returns it decoded.
+std::string roundTrip(const std::string& text)
+{
+  Json value;
+  std::string error;
+  const std::string json = jsonString(text);
+  EXPECT_TRUE(JsonParser::parse(json, value, error)) << json << ": " << error;
+  EXPECT_TRUE(value.isString());
+  return value.string;
+}
+}  // namespace
+
+TEST(JsonOutput, EscapesQuotesBackslashesAndControlCharacters)
+{
+  EXPECT_EQ(jsonString("bird-1"), "\"bird-1\"");
+  EXPECT_EQ(jsonString("a\"b"), "\"a\\\"b\"");
+  EXPECT_EQ(jsonString("C:\\x"), "\"C:\\\\x\"");
+  EXPECT_EQ(jsonString("l1\nl2\r\t"), "\"l1\\nl2\\r\\t\"");
+  EXPECT_EQ(jsonString(std::string("\b\f", 2)), "\"\\b\\f\"");
+  EXPECT_EQ(jsonString(std::string("\x01\x1f\x7f", 3)), "\"\\u0001\\u001f\\u007f\"");
+  EXPECT_EQ(jsonString(std::string("a\0b", 3)), "\"a\\u0000b\"");
+  EXPECT_EQ(jsonString(""), "\"\"");
+  EXPECT_EQ(jsonString("/"), "\"/\"");
+}
+
+TEST(JsonOutput, StringsRoundTripThroughAStrictParser)
+{
+  const std::vector<std::string> samples = {"plain", "quote \" and \\ backslash", "tab\tnew\nline",
+                                            std::string("nul\0byte", 8), "caf\xc3\xa9",  // UTF-8 e-acute
+                                            "\xe2\x82\xac", "\xf0\x9f\x90\xa6"};          // euro, bird
+  for (const std::string& s : samples)
+    EXPECT_EQ(roundTrip(s), s);
+}
+
+TEST(JsonOutput, InvalidUtf8BecomesReplacementCharacters)
+{
+  // Latin-1 e-acute, a lone continuation byte, a truncated sequence, an
+  // overlong '/', a surrogate, a code point above U+10FFFF.
+  EXPECT_EQ(jsonString("caf\xe9"), "\"caf\\ufffd\"");
+  EXPECT_EQ(jsonString("\x80"), "\"\\ufffd\"");
+  EXPECT_EQ(jsonString("\xe2\x82"), "\"\\ufffd\\ufffd\"");
+  EXPECT_EQ(jsonString("\xc0\xaf"), "\"\\ufffd\\ufffd\"");
+  EXPECT_EQ(jsonString("\xed\xa0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");
+  EXPECT_EQ(jsonString("\xf4\x90\x80\x80"), "\"\\ufffd\\ufffd\\ufffd\\ufffd\"");
+  EXPECT_EQ(roundTrip("ok\xffok"), "ok\xef\xbf\xbdok");
+}
+
+TEST(JsonOutput, NumbersAreFixedPrecisionAndFinite)
+{
+  EXPECT_EQ(jsonNumber(3.1, 3), "3.100");
+  EXPECT_EQ(jsonNumber(0.93, 4), "0.9300");
+  EXPECT_EQ(jsonNumber(2.0 / 3.0, 2), "0.67");
+  EXPECT_EQ(jsonNumber(-1.25, 1), "-1.2");  // round half to even in binary: -1.25 is exact
+  EXPECT_EQ(jsonNumber(-12.5, 0), "-12");
+  EXPECT_EQ(jsonNumber(1234567.0, 2), "1234567.00");
+  EXPECT_EQ(jsonNumber(0.0, 3), "0.000");
+  EXPECT_EQ(jsonNumber(-0.0, 3), "0.000");
+  EXPECT_EQ(jsonNumber(-0.0004, 3), "0.000");
+  EXPECT_EQ(jsonNumber(-0.0006, 3), "-0.001");
+  EXPECT_EQ(jsonNumber(1e-9, 6), "0.000000");
+  EXPECT_EQ(jsonNumber(std::nan(""), 3), "null");
+  EXPECT_EQ(jsonNumber(std::numeric_limits<double>::infinity(), 3), "null");
+  EXPECT_EQ(jsonNumber(-std::numeric_limits<double>::infinity(), 3), "null");
+  // Whatever the magnitude, the text is a valid JSON number.
+  for (double v : {1e300, -1e300, 5e-324, 123.456})
+  {
+    Json value;
+    std::string error;
+    EXPECT_TRUE(JsonParser::parse(jsonNumber(v, 6), value, error)) << error;
+    EXPECT_TRUE(value.isNumber());
+  }
+}
+
+TEST(JsonOutput, FrameLineHasTheDocumentedShape)
+{
+  amcr::RecognitionResult result;
+  result.iteration = 7;
+  result.time_ms = 99.0;  // the runner passes its own measurement
+  amcr::RecognizedObject object;
+  object.label = "bird \"1\"";
+  object.prototype_id = 2;
+  object.track_id = 4;
+  object.score = 0.93;
+  object.support = 17;
+  object.image_to_prototype = amcr::Affine(0.5, 0, -10, 0, 0.5, std::nan(""));
+  object.prototype_to_image = amcr::Affine(2, 0, 20, 0, 2, -0.0);
+  object.correspondences.push_back({cv::Point2d(10.126, 20.5), cv::Point2d(1, 2)});
+  object.correspondences.push_back({cv::Point2d(30, 40), cv::Point2d(5.555, -6)});
+  result.objects.push_back(object);
+
+  const std::string line = frameJson(3, 3.14159, result);
+  EXPECT_EQ(line.find('\n'), std::string::npos);
+  EXPECT_EQ(line,
+            "{\"frame\": 3, \"time_ms\": 3.142, \"iteration\": 7, \"objects\": [{\"label\": \"bird \\\"1\\\"\", "
+            "\"track_id\": 4, \"score\": 0.9300, \"support\": 17, "
+            "\"image_to_prototype\": [[0.500000, 0.000000, -10.000000], [0.000000, 0.500000, null]], "
+            "\"prototype_to_image\": [[2.000000, 0.000000, 20.000000], [0.000000, 2.000000, 0.000000]], "
+            "\"correspondences\": [[10.13, 20.50, 1.00, 2.00], [30.00, 40.00, 5.55, -6.00]]}]}");
+  Json value;
+  std::string error;
+  ASSERT_TRUE(JsonParser::parse(line, value, error)) << error;
+  const Json* objects = value.get("objects");
+  ASSERT_TRUE(objects && objects->isArray());
+  ASSERT_EQ(objects->array.size(), 1u);
+  EXPECT_EQ(objects->array[0].get("label")->string, "bird \"1\"");
+}
+
+TEST(JsonOutput, EmptyAndSkippedFrames)
+{
+  amcr::RecognitionResult empty;
+  empty.iteration = 1;
+  EXPECT_EQ(frameJson(0, 0.5, empty), "{\"frame\": 0, \"time_ms\": 0.500, \"iteration\": 1, \"objects\": []}");
+  const std::string skipped = skippedFrameJson(5, 4, "cannot read image 'a\\b.png'");
+  EXPECT_EQ(skipped,
+            "{\"frame\": 5, \"time_ms\": 0.000, \"iteration\": 4, \"objects\": [], "
+            "\"skipped\": \"cannot read image 'a\\\\b.png'\"}");
+  Json value;
+  std::string error;
+  EXPECT_TRUE(JsonParser::parse(skipped, value, error)) << error;
+}
+
+TEST(JsonOutput, WriteFailureThrows)
+{
+  std::ostringstream out;
+  amcr::offline::writeJsonLine(out, "{}", "memory");
+  EXPECT_EQ(out.str(), "{}\n");
+  out.setstate(std::ios::badbit);
+  EXPECT_THROW(amcr::offline::writeJsonLine(out, "{}", "memory"), std::runtime_error);
+}
+
+TEST(RunnerOptions, ParsesEveryOption)
+{
+  const RunnerOptions o = parseRunnerOptions({"--prototypes", "protos", "--input=in.avi", "--config", "c.yaml",
+                                              "--seed", "18446744073709551615", "--frames", "7", "--output",
+                                              "o.jsonl", "--overlay", "v.MP4"});
+  EXPECT_EQ(o.prototypes, "protos");
+  EXPECT_EQ(o.input, "in.avi");
+  EXPECT_EQ(o.config, "c.yaml");
+  EXPECT_TRUE(o.has_seed);
+  EXPECT_EQ(o.seed, 18446744073709551615ull);
+  EXPECT_TRUE(o.has_frames);
+  EXPECT_EQ(o.frames, 7);
+  EXPECT_EQ(o.output, "o.jsonl");
+  EXPECT_EQ(o.overlay, "v.MP4");
+  EXPECT_FALSE(o.help);
+
+  const RunnerOptions d = parseRunnerOptions({"--input", "x.png", "--prototypes", "p"});
+  EXPECT_FALSE(d.has_seed);
+  EXPECT_FALSE(d.has_frames);
+  EXPECT_TRUE(d.output.empty());
+  EXPECT_TRUE(parseRunnerOptions({"--help"}).help);
+  EXPECT_EQ(amcr::offline::overlayFourcc("a/b.avi"), "MJPG");
+  EXPECT_EQ(amcr::offline::overlayFourcc("b.mp4"), "mp4v");
+  EXPECT_EQ(amcr::offline::overlayFourcc("dir.avi/b"), "");
+}
+
+TEST(RunnerOptions, RejectsBadCommandLinesNamingTheProblem)
+{
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--input", "x"}, "--prototypes"},
+      {{"--prototypes", "p"}, "--input"},
+      {{"--prototypes", "p", "--input", "x", "--seed", "abc"}, "--seed"},
+      {{"--prototypes", "p", "--input", "x", "--seed", "-1"}, "--seed"},
+      {{"--prototypes", "p", "--input", "x", "--seed", "18446744073709551616"}, "--seed"},
+      {{"--prototypes", "p", "--input", "x", "--seed", "1.5"}, "--seed"},
+      {{"--prototypes", "p", "--input", "x", "--frames", "0"}, "--frames"},
+      {{"--prototypes", "p", "--input", "x", "--frames", "ten"}, "--frames"},
+      {{"--prototypes", "p", "--input", "x", "--frames"}, "--frames"},
+      {{"--prototypes", "p", "--input", "--frames", "3"}, "--input"},
+      {{"--prototypes", "p", "--input", "x", "--overlay", "v.gif"}, "--overlay"},
+      {{"--prototypes", "p", "--input", "x", "--bogus", "1"}, "--bogus"},
+      {{"--prototypes", "p", "--input", "x", "stray"}, "stray"},
+      {{"--prototypes", "p", "--prototypes", "q", "--input", "x"}, "twice"},
+      {{"--prototypes=", "--input", "x"}, "--prototypes"},
+  };
+  for (const auto& c : cases)
+  {
+    std::string joined;
+    for (const std::string& a : c.first)
+      joined += a + " ";
+    try
+    {
+      parseRunnerOptions(c.first);
+      ADD_FAILURE() << "accepted: " << joined;
+    }
+    catch (const UsageError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(c.second), std::string::npos) << joined << "-> " << e.what();
+    }
+  }
+}

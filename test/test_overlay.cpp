@@ -1,0 +1,161 @@
+// drawOverlay: a fixed size per input size and memory, every input type the
+// library takes, the input kept 1:1 at the top left, and clear errors.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "amcr/errors.h"
+#include "amcr/overlay.h"
+#include "amcr/params.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/recognizer.h"
+
+namespace
+{
+cv::Mat silhouette(int kind)
+{
+  cv::Mat image(120, 120, CV_8UC1, cv::Scalar(255));
+  if (kind == 0)
+    cv::circle(image, cv::Point(60, 60), 40, cv::Scalar(0), cv::FILLED);
+  else if (kind == 1)
+    cv::rectangle(image, cv::Rect(20, 40, 80, 40), cv::Scalar(0), cv::FILLED);
+  else
+    cv::fillConvexPoly(image, std::vector<cv::Point>{{60, 10}, {110, 110}, {10, 110}}, cv::Scalar(0));
+  return image;
+}
+
+amcr::Params smallParams()
+{
+  amcr::Params params;
+  params.num_v_particles = 8;
+  params.m_particles_per_prototype = 10;
+  params.prototype_size = 48;
+  return params;
+}
+
+cv::Mat scene()
+{
+  cv::Mat image(150, 201, CV_8UC3, cv::Scalar(200, 190, 180));
+  cv::circle(image, cv::Point(70, 70), 35, cv::Scalar(20, 20, 20), cv::FILLED);
+  cv::rectangle(image, cv::Rect(120, 30, 60, 30), cv::Scalar(30, 30, 30), cv::FILLED);
+  return image;
+}
+}  // namespace
+
+TEST(OverlayLayout, CellsFitBesideTheImageAndTheSizeIsEven)
+{
+  for (const cv::Size input : {cv::Size(640, 480), cv::Size(201, 150), cv::Size(64, 40), cv::Size(1280, 721)})
+    for (const std::size_t r : {1u, 3u, 17u, 100u})
+    {
+      const amcr::OverlayLayout layout = amcr::overlayLayout(input, r);
+      const std::string what = std::to_string(input.width) + "x" + std::to_string(input.height) + ", " +
+                               std::to_string(r) + " prototypes";
+      EXPECT_EQ(layout.size.width % 2, 0) << what;
+      EXPECT_EQ(layout.size.height % 2, 0) << what;
+      EXPECT_EQ(layout.image, cv::Rect(cv::Point(0, 0), input)) << what;
+      EXPECT_GE(layout.cell, amcr::OverlayOptions().min_panel_size) << what;
+      EXPECT_GE(layout.grid_columns * layout.grid_rows, static_cast<int>(r)) << what;
+      const cv::Rect whole(cv::Point(0, 0), layout.size);
+      for (std::size_t k = 0; k < r; ++k)
+      {
+        const cv::Rect cell = layout.cellRect(static_cast<int>(k));
+        EXPECT_EQ(cell & whole, cell) << what << ", cell " << k;
+        EXPECT_TRUE((cell & layout.image).empty()) << what << ", cell " << k;
+      }
+      // The same arguments, the same layout.
+      EXPECT_EQ(amcr::overlayLayout(input, r).size, layout.size);
+    }
+}
+
+TEST(DrawOverlay, FixedSizeBgrForEveryInputType)
+{
+  const amcr::Params params = smallParams();
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  for (int k = 0; k < 3; ++k)
+    memory->add("shape-" + std::to_string(k), silhouette(k), params);
+  amcr::Recognizer recognizer(params, memory);
+  const cv::Mat bgr = scene();
+  const cv::Size expected = amcr::overlayLayout(bgr.size(), memory->size()).size;
+
+  cv::Mat gray, bgra, gray16, bgr32f;
+  cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(bgr, bgra, cv::COLOR_BGR2BGRA);
+  gray.convertTo(gray16, CV_16U, 257.0);
+  bgr.convertTo(bgr32f, CV_32F, 1.0 / 255.0);
+  for (const cv::Mat& input : {bgr, gray, bgra, gray16, bgr32f})
+    for (int step = 0; step < 3; ++step)
+    {
+      const amcr::RecognitionResult result = recognizer.step(input);
+      const cv::Mat overlay = amcr::drawOverlay(input, recognizer, result);
+      ASSERT_EQ(overlay.type(), CV_8UC3) << "input type " << input.type();
+      ASSERT_EQ(overlay.size(), expected) << "input type " << input.type();
+    }
+
+  // Without the status line and the particles, the input is copied 1:1.
+  amcr::OverlayOptions plain;
+  plain.draw_status = false;
+  plain.draw_m_particles = false;
+  plain.draw_v_particles = false;
+  amcr::RecognitionResult nothing;
+  const cv::Mat overlay = amcr::drawOverlay(bgr, recognizer, nothing, plain);
+  cv::Mat difference;
+  cv::absdiff(overlay(cv::Rect(cv::Point(0, 0), bgr.size())), bgr, difference);
+  EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0);
+
+  // The M-particles show in the prototype panels.
+  amcr::OverlayOptions with_m = plain;
+  with_m.draw_m_particles = true;
+  const cv::Rect column = amcr::overlayLayout(bgr.size(), memory->size()).column;
+  cv::absdiff(amcr::drawOverlay(bgr, recognizer, nothing, with_m)(column), overlay(column), difference);
+  EXPECT_GT(cv::countNonZero(difference.reshape(1)), 0);
+}
+
+TEST(DrawOverlay, DrawsRecognizedObjectsEvenWithOddValues)
+{
+  const amcr::Params params = smallParams();
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  memory->add("disc", silhouette(0), params);
+  amcr::Recognizer recognizer(params, memory);
+  const cv::Mat bgr = scene();
+  recognizer.step(bgr);
+
+  amcr::RecognitionResult result;
+  amcr::RecognizedObject object;
+  object.label = "disc";
+  object.prototype_id = 0;
+  object.track_id = 3;
+  object.score = 0.9;
+  object.support = 4;
+  for (int k = 0; k < 16; ++k)
+    object.outline.emplace_back(70 + 35 * std::cos(k * CV_PI / 8), 70 + 35 * std::sin(k * CV_PI / 8));
+  object.outline.emplace_back(std::nan(""), 1.0);  // skipped, not drawn
+  object.correspondences.push_back({cv::Point2d(70, 70), cv::Point2d(60, 60)});
+  object.correspondences.push_back({cv::Point2d(1e9, -1e9), cv::Point2d(-5, 500)});  // far outside: clipped
+  result.objects.push_back(object);
+  amcr::RecognizedObject unknown = object;
+  unknown.prototype_id = 7;  // not in the memory: outline only
+  result.objects.push_back(unknown);
+
+  const cv::Mat overlay = amcr::drawOverlay(bgr, recognizer, result);
+  EXPECT_EQ(overlay.size(), amcr::overlayLayout(bgr.size(), 1).size);
+  // The outline changed the input where it runs.
+  const cv::Vec3b on_outline = overlay.at<cv::Vec3b>(70, 105);
+  EXPECT_NE(on_outline, bgr.at<cv::Vec3b>(70, 105));
+}
+
+TEST(DrawOverlay, RefusesEmptyAndUnsupportedImages)
+{
+  const amcr::Params params = smallParams();
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  memory->add("disc", silhouette(0), params);
+  amcr::Recognizer recognizer(params, memory);
+  const amcr::RecognitionResult nothing;
+  EXPECT_THROW(amcr::drawOverlay(cv::Mat(), recognizer, nothing), amcr::InputError);
+  EXPECT_THROW(amcr::drawOverlay(cv::Mat(10, 10, CV_8UC2, cv::Scalar(0)), recognizer, nothing), amcr::InputError);
+  EXPECT_THROW(amcr::drawOverlay(cv::Mat(10, 10, CV_32SC1, cv::Scalar(0)), recognizer, nothing), amcr::InputError);
+}
