@@ -3,6 +3,9 @@
 // the V-particles and, once, on each prototype to build its lookup table.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
+
 #include <opencv2/core.hpp>
 
 namespace amcr
@@ -45,13 +48,20 @@ public:
   cv::Point2f edgeNormal(float x, float y) const;
 
   /// Bilinear grey level at (x, y); (x, y) must lie in [0, cols-1] x [0, rows-1].
-  float sample(float x, float y) const;
+  float sample(float x, float y) const
+  {
+    const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+    const int dx = x0 + 1 < cols_ ? 1 : 0;
+    const std::size_t dy = y0 + 1 < rows_ ? step_ : 0;
+    const float fx = x - x0, fy = y - y0;
+    const uchar* p = data_ + static_cast<std::size_t>(y0) * step_ + x0;
+    const float top = p[0] + fx * (p[dx] - p[0]);
+    const float bottom = p[dy] + fx * (p[dy + dx] - p[dy]);
+    return top + fy * (bottom - top);
+  }
 
   /// Whether (x, y) lies where sample() may be called.
-  bool contains(float x, float y) const
-  {
-    return x >= 0.f && y >= 0.f && x <= image_.cols - 1 && y <= image_.rows - 1;
-  }
+  bool contains(float x, float y) const { return x >= 0.f && y >= 0.f && x <= max_x_ && y <= max_y_; }
 
   double threshold() const { return threshold_; }
 
@@ -60,10 +70,24 @@ public:
 private:
 
   /// Whole px of free space at (x, y) (0 without a map).
-  int leap(float x, float y) const;
+  int leap(float x, float y) const
+  {
+    if (!free_)
+      return 0;
+    const int ix = std::min(static_cast<int>(x + 0.5f), cols_ - 1), iy = std::min(static_cast<int>(y + 0.5f), rows_ - 1);
+    return static_cast<int>(free_[static_cast<std::size_t>(iy) * cols_ + ix]);
+  }
 
   cv::Mat image_;
   cv::Mat free_space_;
+  // Raw views of image_ and free_space_ for the inner loops.
+  const uchar* data_ = nullptr;
+  std::size_t step_ = 0;
+  int cols_ = 0;
+  int rows_ = 0;
+  float max_x_ = 0.f;
+  float max_y_ = 0.f;
+  const float* free_ = nullptr;
   float threshold_;
   float max_length_;
 };

@@ -9,6 +9,7 @@ namespace amcr
 namespace
 {
 constexpr float kMismatchPenalty = 0.5f;  // a ray valid on one side only, in squared log units
+constexpr int kCoarseBinStep = 3;         // bins between the headings of the coarse pass
 
 /// log of every raw table value (distance in units of Prototype::kDistanceUnit).
 const std::array<float, 256>& logTable()
@@ -23,6 +24,36 @@ const std::array<float, 256>& logTable()
 }
 }  // namespace
 
+namespace
+{
+/// How badly the feature rays of direction bin `bin` match the signature:
+/// the squared deviation of the log-distance differences from their mean
+/// (the mean absorbs the scale), plus a penalty per validity mismatch.
+float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bool* v_valid)
+{
+  const std::array<float, 256>& logs = logTable();
+  float sum = 0.f, sum_sq = 0.f, cost = 0.f;
+  int both = 0;
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const std::uint8_t d = raw[(bin + k * kFeatureBinStep) % kDirectionBins];
+    const bool m_valid = d != Prototype::kNoEdge;
+    if (m_valid != v_valid[k])
+    {
+      cost += kMismatchPenalty;
+      continue;
+    }
+    if (!m_valid)
+      continue;
+    const float diff = logs[d] - v_log[k];
+    sum += diff;
+    sum_sq += diff * diff;
+    ++both;
+  }
+  return both > 0 ? cost + sum_sq - sum * sum / both : cost;
+}
+}  // namespace
+
 int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature)
 {
   if (signature.valid_rays() < 3)
@@ -34,34 +65,24 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
     v_valid[k] = signature.distance[k] > 0.f;
     v_log[k] = v_valid[k] ? std::log(std::max(0.25f, signature.distance[k])) : 0.f;
   }
-  const std::array<float, 256>& logs = logTable();
   const std::uint8_t* raw = prototype.rawDistances(x, y);
-  int best_bin = -1;
+  // Coarse to fine: every third bin (15 degrees), then the bins around the best.
+  int best_bin = 0;
   float best_cost = std::numeric_limits<float>::infinity();
-  for (int bin = 0; bin < kDirectionBins; ++bin)
+  for (int bin = 0; bin < kDirectionBins; bin += kCoarseBinStep)
   {
-    // Squared deviation of the log-distance differences from their mean
-    // (the mean absorbs the scale), plus a penalty per validity mismatch.
-    float sum = 0.f, sum_sq = 0.f, cost = 0.f;
-    int both = 0;
-    for (int k = 0; k < kFeatureRays; ++k)
+    const float cost = headingCost(raw, bin, v_log, v_valid);
+    if (cost < best_cost)
     {
-      const std::uint8_t d = raw[(bin + k * kFeatureBinStep) % kDirectionBins];
-      const bool m_valid = d != Prototype::kNoEdge;
-      if (m_valid != v_valid[k])
-      {
-        cost += kMismatchPenalty;
-        continue;
-      }
-      if (!m_valid)
-        continue;
-      const float diff = logs[d] - v_log[k];
-      sum += diff;
-      sum_sq += diff * diff;
-      ++both;
+      best_cost = cost;
+      best_bin = bin;
     }
-    if (both > 0)
-      cost += sum_sq - sum * sum / both;
+  }
+  const int coarse = best_bin;
+  for (int offset = 1 - kCoarseBinStep; offset < kCoarseBinStep; ++offset)
+  {
+    const int bin = (coarse + offset + kDirectionBins) % kDirectionBins;
+    const float cost = offset == 0 ? best_cost : headingCost(raw, bin, v_log, v_valid);
     if (cost < best_cost)
     {
       best_cost = cost;

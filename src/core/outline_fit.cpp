@@ -1,6 +1,7 @@
 #include "amcr/outline_fit.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -41,70 +42,91 @@ std::vector<MappedPoint> mapOutline(const Prototype& prototype, const Affine& ta
   return mapped;
 }
 
-/// Signed edge strength at t along the normal: I(t + 1) - I(t - 1), or 0
-/// where the samples leave the image.
-double stepAt(const RadialScanner& scanner, const MappedPoint& p, double t)
+/// Grey levels along an outline point's normal, every 0.5 px, enough to
+/// evaluate the step I(t + 1) - I(t - 1) for |t| <= search + 0.5.
+class NormalProfile
 {
-  const double x0 = p.image.x + (t - 1) * p.normal.x, y0 = p.image.y + (t - 1) * p.normal.y;
-  const double x1 = p.image.x + (t + 1) * p.normal.x, y1 = p.image.y + (t + 1) * p.normal.y;
-  const float fx0 = static_cast<float>(x0), fy0 = static_cast<float>(y0);
-  const float fx1 = static_cast<float>(x1), fy1 = static_cast<float>(y1);
-  if (!scanner.contains(fx0, fy0) || !scanner.contains(fx1, fy1))
-    return 0.0;
-  return scanner.sample(fx1, fy1) - scanner.sample(fx0, fy0);
-}
-
-/// The strongest edge within [-search, search] along the normal (0.5 px
-/// steps); returns false when none reaches the scanner's threshold.
-bool strongestEdge(const RadialScanner& scanner, const MappedPoint& p, double search, double& offset, double& step)
-{
-  double best = 0.0;
-  for (double t = -search; t <= search + 1e-9; t += 0.5)
+public:
+  NormalProfile(const RadialScanner& scanner, const MappedPoint& p, double search)
+    : reach_(std::min(kMaxReach, static_cast<int>(std::ceil(2.0 * search)))), half_(reach_ + 3)
   {
-    const double s = stepAt(scanner, p, t);
-    if (std::abs(s) > std::abs(best) || (std::abs(s) == std::abs(best) && std::abs(t) < std::abs(offset)))
+    for (int k = -half_; k <= half_; ++k)
     {
-      best = s;
-      offset = t;
+      const float x = static_cast<float>(p.image.x + 0.5 * k * p.normal.x);
+      const float y = static_cast<float>(p.image.y + 0.5 * k * p.normal.y);
+      grey_[k + half_] = scanner.contains(x, y) ? scanner.sample(x, y) : kOutside;
     }
   }
+
+  /// Steps are searched at t = k / 2 for |k| <= reach().
+  int reach() const { return reach_; }
+
+  /// Signed step I(t + 1) - I(t - 1) at t = k / 2; 0 where a sample leaves the image.
+  float step(int k) const
+  {
+    const float after = grey_[k + 2 + half_], before = grey_[k - 2 + half_];
+    return (after == kOutside || before == kOutside) ? 0.f : after - before;
+  }
+
+private:
+  static constexpr float kOutside = -1.f;
+  static constexpr int kMaxReach = 200;  // 100 px, the largest refine_search
+  int reach_;
+  int half_;
+  std::array<float, 2 * (kMaxReach + 3) + 1> grey_;  // on the stack: one profile per outline point and pass
+};
+
+/// The strongest step within the profile's reach; returns false when none
+/// reaches the scanner's threshold.
+bool strongestEdge(const NormalProfile& profile, double threshold, double& offset, double& step)
+{
+  float best = 0.f;
+  int best_k = 0;
+  for (int k = -profile.reach(); k <= profile.reach(); ++k)
+  {
+    const float s = profile.step(k);
+    if (std::abs(s) > std::abs(best) || (std::abs(s) == std::abs(best) && std::abs(k) < std::abs(best_k)))
+    {
+      best = s;
+      best_k = k;
+    }
+  }
+  offset = 0.5 * best_k;
   step = best;
-  return std::abs(best) >= scanner.threshold();
+  return std::abs(best) >= threshold;
 }
 
 /// The nearest edge of polarity `sign` (+1: grey rises outwards, -1: falls)
-/// within [-search, search] along the normal: the local maximum of the signed
-/// step closest to the outline point (the "moving edges" search of
-/// model-based trackers). Returns false when there is none.
-bool nearestEdge(const RadialScanner& scanner, const MappedPoint& p, double search, int sign, double& offset)
+/// within the profile's reach: the local maximum of the signed step closest
+/// to the outline point (the "moving edges" search of model-based trackers).
+/// Returns false when there is none.
+bool nearestEdge(const NormalProfile& profile, double threshold, int sign, double& offset)
 {
-  const double threshold = scanner.threshold();
-  double best_distance = search + 1.0;
-  double prev = sign * stepAt(scanner, p, -search - 0.5);
-  double current = sign * stepAt(scanner, p, -search);
-  for (double t = -search; t <= search + 1e-9; t += 0.5)
+  int best_k = profile.reach() + 1;
+  float prev = sign * profile.step(-profile.reach() - 1);
+  float current = sign * profile.step(-profile.reach());
+  for (int k = -profile.reach(); k <= profile.reach(); ++k)
   {
-    const double next = sign * stepAt(scanner, p, t + 0.5);
-    if (current >= threshold && current >= prev && current >= next && std::abs(t) < best_distance)
-    {
-      best_distance = std::abs(t);
-      offset = t;
-    }
+    const float next = sign * profile.step(k + 1);
+    if (current >= threshold && current >= prev && current >= next && std::abs(k) < std::abs(best_k))
+      best_k = k;
     prev = current;
     current = next;
   }
-  return best_distance <= search;
+  offset = 0.5 * best_k;
+  return std::abs(best_k) <= profile.reach();
 }
 
 /// The polarity most outline points show: +1 when the grey level rises
-/// outwards (a dark print on light paper), -1 otherwise.
+/// outwards (a dark print on light paper), -1 otherwise. Every third point
+/// is enough to tell.
 int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped, double search)
 {
   int rising = 0, falling = 0;
-  for (const auto& p : mapped)
+  for (std::size_t i = 0; i < mapped.size(); i += 3)
   {
     double offset = 0.0, step = 0.0;
-    if (strongestEdge(scanner, p, search, offset, step))
+    if (strongestEdge(NormalProfile(scanner, mapped[i], search), scanner.threshold(), offset, step))
       (step > 0 ? rising : falling)++;
   }
   return rising >= falling ? 1 : -1;
@@ -149,7 +171,7 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
     for (const auto& p : mapped)
     {
       double offset = 0.0;
-      if (!nearestEdge(scanner, p, range, sign, offset))
+      if (!nearestEdge(NormalProfile(scanner, p, range), scanner.threshold(), sign, offset))
         continue;
       from.push_back(p.table);
       to.push_back(p.image + offset * p.normal);
@@ -188,7 +210,7 @@ double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, 
   for (const auto& p : mapped)
   {
     double offset = 0.0;
-    found += nearestEdge(scanner, p, tolerance, sign, offset) ? 1 : 0;
+    found += nearestEdge(NormalProfile(scanner, p, tolerance), scanner.threshold(), sign, offset) ? 1 : 0;
   }
   return static_cast<double>(found) / static_cast<double>(prototype.outline().size());
 }

@@ -23,37 +23,22 @@ RadialScanner::RadialScanner(const cv::Mat& smoothed, double threshold, double m
     throw InputError("RadialScanner needs an 8-bit grey image, got " + cv::typeToString(image_.type()));
   if (!free_space_.empty() && (free_space_.type() != CV_32FC1 || free_space_.size() != image_.size()))
     throw InputError("RadialScanner: the free-space map must be CV_32FC1 of the image's size");
+  if (!free_space_.empty() && !free_space_.isContinuous())
+    free_space_ = free_space_.clone();
+  data_ = image_.ptr<uchar>(0);
+  step_ = image_.step[0];
+  cols_ = image_.cols;
+  rows_ = image_.rows;
+  max_x_ = static_cast<float>(cols_ - 1);
+  max_y_ = static_cast<float>(rows_ - 1);
+  free_ = free_space_.empty() ? nullptr : free_space_.ptr<float>(0);
 }
 
-int RadialScanner::leap(float x, float y) const
-{
-  if (free_space_.empty())
-    return 0;
-  const int ix = static_cast<int>(x + 0.5f), iy = static_cast<int>(y + 0.5f);  // x, y >= 0 here
-  return static_cast<int>(free_space_.at<float>(std::min(iy, image_.rows - 1), std::min(ix, image_.cols - 1)));
-}
-
-float RadialScanner::sample(float x, float y) const
-{
-  // Bilinear interpolation; the caller keeps (x, y) inside [0, cols-1] x [0, rows-1].
-  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-  const int x1 = std::min(x0 + 1, image_.cols - 1), y1 = std::min(y0 + 1, image_.rows - 1);
-  const float fx = x - x0, fy = y - y0;
-  const uchar* row0 = image_.ptr<uchar>(y0);
-  const uchar* row1 = image_.ptr<uchar>(y1);
-  const float top = row0[x0] + fx * (row0[x1] - row0[x0]);
-  const float bottom = row1[x0] + fx * (row1[x1] - row1[x0]);
-  return top + fy * (bottom - top);
-}
 
 RayHit RadialScanner::scan(float x, float y, float dx, float dy) const
 {
   RayHit hit;
-  const float max_x = static_cast<float>(image_.cols - 1), max_y = static_cast<float>(image_.rows - 1);
-  auto inside = [&](float t) {
-    const float px = x + t * dx, py = y + t * dy;
-    return px >= 0.f && py >= 0.f && px <= max_x && py <= max_y;
-  };
+  auto inside = [&](float t) { return contains(x + t * dx, y + t * dy); };
   if (!inside(0.f))
     return hit;
   const int steps = static_cast<int>(max_length_);
