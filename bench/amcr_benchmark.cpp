@@ -1,0 +1,92 @@
+// Speed of the core (Google Benchmark): relational-particle updates per
+// second as the particle counts and the memory grow, and the cost of a
+// prototype's lookup table. Inputs are drawn in code (test/scene_drawing.h).
+//
+//   rosrun amcr amcr_benchmark [--benchmark_filter=Step]
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "amcr/prototype.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/recognizer.h"
+#include "scene_drawing.h"
+
+namespace
+{
+using amcr_test::ShapeId;
+
+/// A memory of `count` prototypes cycling through the drawn shapes.
+std::shared_ptr<const amcr::PrototypeMemory> memoryOf(int count)
+{
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  const std::vector<ShapeId>& shapes = amcr_test::allShapes();
+  for (int i = 0; i < count; ++i)
+  {
+    const ShapeId id = shapes[i % shapes.size()];
+    memory->add(amcr_test::shapeName(id) + "_" + std::to_string(i), amcr_test::drawPrototype(id), amcr::Params());
+  }
+  return memory;
+}
+
+/// 640x480 frames showing the arrow over clutter.
+const std::vector<cv::Mat>& frames()
+{
+  static const std::vector<cv::Mat> sequence = [] {
+    amcr_test::Scene scene;
+    scene.objects.push_back({ShapeId::kArrow, amcr_test::makeAffine(amcr_test::prototypeCentre(), {320, 240},
+                                                                     0.6, 0.9, 0.8, 0.2)});
+    scene.clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
+    return amcr_test::renderSequence(scene, 16);
+  }();
+  return sequence;
+}
+
+// One iteration (paper 3.6) on a 640x480 frame: args V-particles, M-particles
+// per prototype per V, prototypes. items/s = relational-particle updates per second.
+void BM_RecognizerStep(benchmark::State& state)
+{
+  amcr::Params params;
+  params.num_v_particles = static_cast<int>(state.range(0));
+  params.m_particles_per_prototype = static_cast<int>(state.range(1));
+  static std::vector<std::shared_ptr<const amcr::PrototypeMemory>> memories(64);
+  const int prototypes = static_cast<int>(state.range(2));
+  if (!memories[prototypes])
+    memories[prototypes] = memoryOf(prototypes);
+  amcr::Recognizer recognizer(params, memories[prototypes]);
+  std::size_t k = 0;
+  for (int warm = 0; warm < 20; ++warm)  // past the first iterations, as in a running stream
+    recognizer.step(frames()[k++ % frames().size()]);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(recognizer.step(frames()[k++ % frames().size()]));
+  const double updates = static_cast<double>(params.num_v_particles) * params.m_particles_per_prototype * prototypes;
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * updates));
+  state.counters["relational_particles"] = updates;
+}
+BENCHMARK(BM_RecognizerStep)
+    ->Args({30, 60, 3})   // the paper's video experiment
+    ->Args({60, 60, 3})   // the defaults
+    ->Args({10, 50, 3})   // the paper's figure 2
+    ->Args({30, 60, 17})  // the paper's comparison memory
+    ->Args({120, 60, 3})
+    ->Unit(benchmark::kMillisecond);
+
+// Building one prototype's lookup table (args: prototype_size px).
+void BM_PrototypeTable(benchmark::State& state)
+{
+  const cv::Mat image = amcr_test::drawPrototype(ShapeId::kStar);
+  std::size_t bytes = 0;
+  for (auto _ : state)
+  {
+    const amcr::Prototype prototype("star", image, static_cast<int>(state.range(0)), 40.0, 1.0);
+    bytes = prototype.tableBytes();
+    benchmark::DoNotOptimize(bytes);
+  }
+  state.counters["table_MB"] = bytes / 1e6;
+}
+BENCHMARK(BM_PrototypeTable)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
+}  // namespace
+
+BENCHMARK_MAIN();
