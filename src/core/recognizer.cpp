@@ -7,7 +7,6 @@
 
 #include "amcr/errors.h"
 #include "amcr/heading_proposal.h"
-#include "amcr/outline_fit.h"
 #include "amcr/ray_directions.h"
 #include "amcr/resampling.h"
 
@@ -15,13 +14,7 @@ namespace amcr
 {
 namespace
 {
-constexpr double kVerifyTolerance = 2.0;          // px along the normal within which an outline point finds its edge
-constexpr int kMaxLeadingHypotheses = 3;          // hypotheses whose poses are injected as M-particles
-constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
-constexpr double kKeepTrackRatio = 0.8;           // a tracked object stays at this share of the decision threshold
-constexpr double kTrackDistance = 40.0;           // px an object's centre may move between frames and keep its track
-constexpr int kMaxCopiesPerV = 3;               // copies one V-particle may get at a V-resampling
-constexpr double kVerificationGain = 4.0;        // log-weight per unit of outline score above 0.5 (V-resampling)
+constexpr int kMaxCopiesPerV = 3;         // copies one V-particle may get at a V-resampling
 constexpr float kMinSeedRayLength = 4.f;  // px: shorter rays at a seed place mean texture, not a region
 
 /// cos and sin of every direction bin.
@@ -42,29 +35,6 @@ const BinDirections& binDirections()
 {
   static const BinDirections directions;
   return directions;
-}
-
-/// Axis-aligned box of a point set.
-cv::Rect2d boundsOf(const std::vector<cv::Point2d>& points)
-{
-  if (points.empty())
-    return {};
-  double x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
-  for (const auto& p : points)
-  {
-    x0 = std::min(x0, p.x);
-    x1 = std::max(x1, p.x);
-    y0 = std::min(y0, p.y);
-    y1 = std::max(y1, p.y);
-  }
-  return {x0, y0, x1 - x0, y1 - y0};
-}
-
-double overlap(const cv::Rect2d& a, const cv::Rect2d& b)
-{
-  const double inter = (a & b).area();
-  const double uni = a.area() + b.area() - inter;
-  return uni > 0 ? inter / uni : 0.0;
 }
 }  // namespace
 
@@ -520,175 +490,5 @@ void Recognizer::resampleV(const RadialScanner& scanner)
   v_ = std::move(next);
   std::swap(m_, m_scratch_);
   computeClusters();
-}
-
-// ---------------------------------------------------------------------------
-// Result extraction (spec "Output")
-
-void Recognizer::computeClusters()
-{
-  const int prototypes = static_cast<int>(memory_->size());
-  clusters_.resize(v_.size());
-  for (std::size_t i = 0; i < v_.size(); ++i)
-  {
-    clusters_[i] = dominantCluster(m_, i * per_v_, (i + 1) * per_v_, prototypes, params_.cluster_radius);
-    clusters_[i].v = static_cast<int>(i);
-  }
-}
-
-bool Recognizer::describeObject(int prototype, const Affine& table_to_image, const RadialScanner& scanner,
-                                RecognizedObject& object) const
-{
-  const Prototype& p = (*memory_)[prototype];
-  double smallest = 0, largest = 0;
-  affineScales(table_to_image, smallest, largest);
-  Affine image_to_table;
-  if (largest > params_.max_affine_scale || smallest < 1.0 / params_.max_affine_scale ||
-      !invertAffine(table_to_image, image_to_table))
-    return false;
-  object = RecognizedObject();
-  object.label = p.label();
-  object.prototype_id = prototype;
-  object.score = outlineSupport(p, scanner, table_to_image, kVerifyTolerance);
-  object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
-  object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
-  // Support: the converged V-particles whose cluster this affine explains.
-  for (const VParticleCluster& c : clusters_)
-  {
-    if (c.prototype != prototype || c.share < params_.cluster_min_share)
-      continue;
-    const cv::Point2d image_point(v_[c.v].x, v_[c.v].y);
-    const cv::Point2d predicted = applyAffine(table_to_image, cv::Point2d(c.mean));
-    if (std::hypot(predicted.x - image_point.x, predicted.y - image_point.y) > params_.group_tolerance)
-      continue;
-    object.correspondences.push_back({image_point, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean))});
-  }
-  object.support = static_cast<int>(object.correspondences.size());
-  for (const auto& o : p.outline())
-    object.outline.push_back(applyAffine(table_to_image, cv::Point2d(o.position)));
-  return true;
-}
-
-// Attention feedback from the verification: a converged V-particle whose
-// interpretation the whole outline confirms gains V-weight, one whose
-// interpretation the image contradicts loses it (the paper's V-weight,
-// "V-particles on clutter die out", made explicit).
-void Recognizer::feedVerification(const std::vector<RecognizedObject>& candidates)
-{
-  for (const VParticleCluster& c : clusters_)
-  {
-    if (c.share < params_.cluster_min_share)
-      continue;
-    double best = -1.0;
-    for (const RecognizedObject& object : candidates)
-    {
-      if (object.prototype_id != c.prototype || object.score <= best)
-        continue;
-      const Prototype& p = (*memory_)[c.prototype];
-      const cv::Point2d predicted = applyAffine(object.prototype_to_image, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean)));
-      if (std::hypot(predicted.x - v_[c.v].x, predicted.y - v_[c.v].y) <= params_.group_tolerance)
-        best = object.score;
-    }
-    if (best >= 0.0)
-      v_[c.v].log_evidence_sum += kVerificationGain * (best - 0.5);
-  }
-}
-
-std::vector<RecognizedObject> Recognizer::extractObjects(const RadialScanner& scanner)
-{
-  computeClusters();
-  // Every group is verified, even a single V-particle's: one that passes
-  // seeds the others through injection before it has the support to be reported.
-  std::vector<ObjectHypothesis> hypotheses = groupClusters(v_, clusters_, params_, 1);
-  if (hypotheses.size() > kMaxVerifiedHypotheses)
-    hypotheses.resize(kMaxVerifiedHypotheses);
-
-  // Starting points of the fit: each group's affine, and each object of the
-  // previous frame (recognition and tracking run together: a pose, once
-  // fitted, is refined on, not found again). A group near a previous object
-  // of its prototype tries both and keeps the better fit.
-  struct Start
-  {
-    int prototype;
-    std::vector<Affine> affines;
-  };
-  std::vector<Start> starts;
-  std::vector<bool> previous_used(previous_.size(), false);
-  for (const auto& h : hypotheses)
-  {
-    Start start{h.prototype, {h.table_to_image}};
-    const cv::Point2d centre = applyAffine(h.table_to_image, (*memory_)[h.prototype].centre());
-    for (std::size_t k = 0; k < previous_.size(); ++k)
-    {
-      const cv::Point2d previous_centre = applyAffine(previous_[k].table_to_image, (*memory_)[h.prototype].centre());
-      if (previous_[k].prototype == h.prototype &&
-          std::hypot(centre.x - previous_centre.x, centre.y - previous_centre.y) <= kTrackDistance)
-      {
-        start.affines.push_back(previous_[k].table_to_image);
-        previous_used[k] = true;
-      }
-    }
-    starts.push_back(std::move(start));
-  }
-  for (std::size_t k = 0; k < previous_.size(); ++k)
-    if (!previous_used[k])
-      starts.push_back({previous_[k].prototype, {previous_[k].table_to_image}});
-
-  std::vector<RecognizedObject> candidates;
-  for (const auto& start : starts)
-  {
-    const Prototype& p = (*memory_)[start.prototype];
-    RecognizedObject best;
-    bool found = false;
-    for (const Affine& affine : start.affines)
-    {
-      RecognizedObject object;
-      const Affine refined = refineOnEdges(p, scanner, affine, params_.refine_iterations, params_.refine_search);
-      if (describeObject(start.prototype, refined, scanner, object) && (!found || object.score > best.score))
-      {
-        best = std::move(object);
-        found = true;
-      }
-    }
-    if (found)
-      candidates.push_back(std::move(best));
-  }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const RecognizedObject& a, const RecognizedObject& b) { return a.score > b.score; });
-  feedVerification(candidates);
-
-  // The leading hypotheses seed M-particles at the next iteration, reported or not.
-  leading_.clear();
-  for (const auto& c : candidates)
-  {
-    if (static_cast<int>(leading_.size()) >= kMaxLeadingHypotheses || c.score < 0.5 * params_.decision_threshold)
-      break;
-    const Prototype& p = (*memory_)[c.prototype_id];
-    leading_.push_back({c.prototype_id, composeAffine(c.image_to_prototype, p.originalToTable())});
-  }
-
-  // Report what passes the decision threshold; of two overlapping objects the better one.
-  std::vector<RecognizedObject> objects;
-  std::vector<cv::Rect2d> boxes;
-  previous_.clear();
-  for (auto& c : candidates)
-  {
-    // Hysteresis: an object recognized in the previous frame stays while its
-    // score keeps above a share of the threshold.
-    const double threshold = params_.decision_threshold * (tracks_.continues(c) ? kKeepTrackRatio : 1.0);
-    if (c.score < threshold || c.support < params_.min_support)
-      continue;
-    const cv::Rect2d box = boundsOf(c.outline);
-    bool suppressed = false;
-    for (const auto& b : boxes)
-      suppressed = suppressed || overlap(box, b) > 0.5;
-    if (suppressed)
-      continue;
-    boxes.push_back(box);
-    const Prototype& p = (*memory_)[c.prototype_id];
-    previous_.push_back({c.prototype_id, composeAffine(p.tableToOriginal(), c.prototype_to_image)});
-    objects.push_back(std::move(c));
-  }
-  return objects;
 }
 }  // namespace amcr
