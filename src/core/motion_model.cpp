@@ -48,11 +48,12 @@ void MotionModel::moveM(MParticleSet& m, std::size_t begin, std::size_t end, dou
       l10 = std::sin(r);
       l11 = std::cos(r);
     }
-    // Heading change: the angle between the mapped old and new V directions.
-    const double mapped_old = std::atan2(l10 * old_dx + l11 * old_dy, l00 * old_dx + l01 * old_dy);
+    // Heading change: the angle from the mapped old to the mapped new V direction.
+    const double mapped_old_x = l00 * old_dx + l01 * old_dy, mapped_old_y = l10 * old_dx + l11 * old_dy;
     const double mapped_new_x = l00 * new_dx + l01 * new_dy, mapped_new_y = l10 * new_dx + l11 * new_dy;
-    const double mapped_new = std::atan2(mapped_new_y, mapped_new_x);
-    m.theta[i] = static_cast<float>(m.theta[i] + (mapped_new - mapped_old) + rng.gaussian(noise_rotation_));
+    const double turn = std::atan2(mapped_old_x * mapped_new_y - mapped_old_y * mapped_new_x,
+                                   mapped_old_x * mapped_new_x + mapped_old_y * mapped_new_y);
+    m.theta[i] = static_cast<float>(m.theta[i] + turn + rng.gaussian(noise_rotation_));
     m.x[i] = static_cast<float>(m.x[i] + u.translation * mapped_new_x + rng.gaussian(noise_translation_));
     m.y[i] = static_cast<float>(m.y[i] + u.translation * mapped_new_y + rng.gaussian(noise_translation_));
   }
