@@ -1,0 +1,59 @@
+// amcr/RecognizerNodelet: Radial-AMCR on an image stream. Thin glue around
+// amcr::Recognizer (model: image_proc's rectify nodelet).
+//
+// Subscribes: image (sensor_msgs/Image, through image_transport; ~image_transport picks the transport).
+// Publishes:  ~recognitions (amcr/Recognitions), ~overlay (sensor_msgs/Image bgr8, drawn only while
+//             subscribed), ~prototypes (amcr/PrototypeTable, latched).
+// Services:   ~reset (std_srvs/Empty), ~load_prototypes (amcr/LoadPrototypes).
+// Parameters: ~prototypes (directory), ~config (YAML file), every key of config/amcr.yaml.
+//
+// No callback throws: bad input is reported (throttled) and skipped.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <image_transport/image_transport.h>
+#include <nodelet/nodelet.h>
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+
+#include "amcr/params.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/recognizer.h"
+#include <amcr/LoadPrototypes.h>
+
+namespace amcr_ros
+{
+class RecognizerNodelet : public nodelet::Nodelet
+{
+private:
+  void onInit() override;
+
+  void imageCb(const sensor_msgs::ImageConstPtr& msg);
+  bool resetCb(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
+  bool loadPrototypesCb(amcr::LoadPrototypes::Request& request, amcr::LoadPrototypes::Response& response);
+
+  /// Loads a memory and swaps it in (recognizer_mutex_ held by the caller).
+  /// Returns the error text, empty on success. Never throws.
+  std::string loadPrototypes(const std::string& directory);
+  void publishPrototypeTable();
+
+  std::shared_ptr<image_transport::ImageTransport> it_;
+  image_transport::Subscriber sub_image_;
+  image_transport::Publisher pub_overlay_;
+  ros::Publisher pub_recognitions_;
+  ros::Publisher pub_prototypes_;
+  ros::ServiceServer srv_reset_;
+  ros::ServiceServer srv_load_;
+
+  std::mutex recognizer_mutex_;  // everything below
+  amcr::Params params_;
+  std::shared_ptr<const amcr::PrototypeMemory> memory_;
+  std::string memory_directory_;
+  std::unique_ptr<amcr::Recognizer> recognizer_;  // null while no memory is loaded
+  ros::Time last_stamp_;
+  cv::Size last_size_;
+};
+}  // namespace amcr_ros
