@@ -121,6 +121,13 @@ bool RecognizerNodelet::loadPrototypesCb(amcr::LoadPrototypes::Request& request,
   return true;  // the answer carries the error: the call itself succeeded
 }
 
+void RecognizerNodelet::reportInputError(const std::string& text)
+{
+  std::lock_guard<std::mutex> lock(report_mutex_);
+  if (input_errors_.shouldReport(text))
+    NODELET_ERROR("%s", text.c_str());
+}
+
 void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
 {
   try
@@ -129,7 +136,7 @@ void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
     cv_bridge::CvImageConstPtr image = toCoreImage(msg, why);
     if (!image)
     {
-      NODELET_ERROR_THROTTLE(5.0, "image skipped: %s", why.c_str());
+      reportInputError("image skipped: " + why);
       return;
     }
 
@@ -170,8 +177,8 @@ void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
   }
   catch (const std::exception& e)
   {
-    NODELET_ERROR_THROTTLE(5.0, "image (%u x %u, '%s') skipped: %s", msg->width, msg->height, msg->encoding.c_str(),
-                           e.what());
+    reportInputError("image (" + std::to_string(msg->width) + " x " + std::to_string(msg->height) + ", '" +
+                     msg->encoding + "') skipped: " + e.what());
   }
 }
 }  // namespace amcr_ros

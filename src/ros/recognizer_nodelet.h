@@ -22,6 +22,7 @@
 #include "amcr/params.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
+#include "report_throttle.h"
 #include <amcr/LoadPrototypes.h>
 
 namespace amcr_ros
@@ -39,6 +40,8 @@ private:
   /// Returns the error text, empty on success. Never throws.
   std::string loadPrototypes(const std::string& directory);
   void publishPrototypeTable();
+  /// An error about an input image, at most every 5 s per distinct text.
+  void reportInputError(const std::string& text);
 
   std::shared_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_image_;
@@ -47,6 +50,9 @@ private:
   ros::Publisher pub_prototypes_;
   ros::ServiceServer srv_reset_;
   ros::ServiceServer srv_load_;
+
+  std::mutex report_mutex_;
+  ReportThrottle input_errors_{5.0};  // per problem text, seconds
 
   std::mutex recognizer_mutex_;  // everything below
   amcr::Params params_;
