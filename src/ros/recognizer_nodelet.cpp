@@ -7,11 +7,13 @@
 #include <cv_bridge/cv_bridge.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <sensor_msgs/image_encodings.h>
+#include <xmlrpcpp/XmlRpcException.h>
 
 #include "amcr/errors.h"
 #include "amcr/overlay.h"
 #include "image_input.h"
 #include "message_conversion.h"
+#include "planar_pose.h"
 #include "parameter_loading.h"
 #include <amcr/PrototypeTable.h>
 #include <amcr/Recognitions.h>
@@ -55,6 +57,10 @@ void RecognizerNodelet::onInit()
     publishPrototypeTable();
   }
 
+  loadPoseParameters();
+  tf_broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+  sub_info_ = nh.subscribe("camera_info", 1, &RecognizerNodelet::cameraInfoCb, this);
+
   pub_recognitions_ = private_nh.advertise<amcr::Recognitions>("recognitions", 10);
   image_transport::ImageTransport private_it(private_nh);
   pub_overlay_ = private_it.advertise("overlay", 1);
@@ -65,6 +71,104 @@ void RecognizerNodelet::onInit()
   // filter must see the stream even while nobody listens yet.
   const image_transport::TransportHints hints("raw", ros::TransportHints(), private_nh);
   sub_image_ = it_->subscribe("image", 1, &RecognizerNodelet::imageCb, this, hints);
+}
+
+void RecognizerNodelet::loadPoseParameters()
+{
+  ros::NodeHandle& private_nh = getPrivateNodeHandle();
+  private_nh.param<std::string>("frame_prefix", frame_prefix_, "amcr/");
+  XmlRpc::XmlRpcValue value;
+  if (!private_nh.getParam("metres_per_pixel", value))
+    return;
+  try
+  {
+    if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble)
+      metres_per_pixel_ = static_cast<double>(value);
+    else if (value.getType() == XmlRpc::XmlRpcValue::TypeInt)
+      metres_per_pixel_ = static_cast<int>(value);
+    else if (value.getType() == XmlRpc::XmlRpcValue::TypeStruct)
+    {
+      for (auto& entry : value)
+      {
+        XmlRpc::XmlRpcValue& v = entry.second;
+        const double mpp = v.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<double>(static_cast<int>(v))
+                                                                          : static_cast<double>(v);
+        metres_per_pixel_by_label_[entry.first] = mpp;
+      }
+    }
+    else
+      throw XmlRpc::XmlRpcException("not a number or a map");
+  }
+  catch (const XmlRpc::XmlRpcException& e)
+  {
+    NODELET_ERROR("~metres_per_pixel must be a number (m per prototype px, > 0) or a map label -> number: %s; "
+                  "no poses",
+                  e.getMessage().c_str());
+    metres_per_pixel_ = 0.0;
+    metres_per_pixel_by_label_.clear();
+  }
+  if (metres_per_pixel_ < 0.0)
+  {
+    NODELET_ERROR("~metres_per_pixel must be > 0, got %g; no poses", metres_per_pixel_);
+    metres_per_pixel_ = 0.0;
+  }
+}
+
+double RecognizerNodelet::metresPerPixel(const std::string& label) const
+{
+  const auto it = metres_per_pixel_by_label_.find(label);
+  return it != metres_per_pixel_by_label_.end() ? it->second : metres_per_pixel_;
+}
+
+void RecognizerNodelet::cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg)
+{
+  const std::string problem = checkCameraInfo(*msg);
+  if (!problem.empty())
+    reportInputError(problem + ": no poses until a valid camera_info arrives");
+  std::lock_guard<std::mutex> lock(info_mutex_);
+  camera_info_ = problem.empty() ? msg : nullptr;
+}
+
+void RecognizerNodelet::fillPoses(amcr::Recognitions& out)
+{
+  if (out.objects.empty())
+    return;
+  sensor_msgs::CameraInfoConstPtr info;
+  {
+    std::lock_guard<std::mutex> lock(info_mutex_);
+    info = camera_info_;
+  }
+  for (amcr::Recognition& object : out.objects)
+  {
+    const double mpp = metresPerPixel(object.label);
+    std::string why;
+    if (!info)
+      why = "no valid camera_info received";
+    else if (out.header.frame_id.empty())
+      why = "the image has no frame_id";
+    else if (!(mpp > 0.0))
+      why = "~metres_per_pixel is not set for '" + object.label + "'";
+    else if (object.prototype_id >= 0 && memory_ && object.prototype_id < static_cast<int>(memory_->size()))
+    {
+      const cv::Size size = (*memory_)[static_cast<std::size_t>(object.prototype_id)].originalSize();
+      const auto& a = object.prototype_to_image;
+      object.pose_valid = planarPose(amcr::Affine(a[0], a[1], a[2], a[3], a[4], a[5]), size.width, size.height, mpp,
+                                     *info, object.pose, why);
+    }
+    if (!object.pose_valid)
+    {
+      NODELET_WARN_THROTTLE(30.0, "no pose for recognized objects: %s", why.c_str());
+      continue;
+    }
+    geometry_msgs::TransformStamped t;
+    t.header = out.header;
+    t.child_frame_id = frame_prefix_ + object.label + "_" + std::to_string(object.track_id);
+    t.transform.translation.x = object.pose.position.x;
+    t.transform.translation.y = object.pose.position.y;
+    t.transform.translation.z = object.pose.position.z;
+    t.transform.rotation = object.pose.orientation;
+    tf_broadcaster_->sendTransform(t);
+  }
 }
 
 std::string RecognizerNodelet::loadPrototypes(const std::string& directory)
@@ -166,6 +270,7 @@ void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
     const amcr::RecognitionResult result = recognizer_->step(image->image);
     amcr::Recognitions out = toMsg(result, msg->header);
     out.processing_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    fillPoses(out);
     pub_recognitions_.publish(out);
 
     if (pub_overlay_.getNumSubscribers() > 0)

@@ -5,7 +5,11 @@
 // Publishes:  ~recognitions (amcr/Recognitions), ~overlay (sensor_msgs/Image bgr8, drawn only while
 //             subscribed), ~prototypes (amcr/PrototypeTable, latched).
 // Services:   ~reset (std_srvs/Empty), ~load_prototypes (amcr/LoadPrototypes).
-// Parameters: ~prototypes (directory), ~config (YAML file), every key of config/amcr.yaml.
+//             tf2 frames <~frame_prefix><label>_<track_id>, children of the image's frame, for every object
+//             whose pose is known (camera_info and ~metres_per_pixel).
+// Subscribes: camera_info (sensor_msgs/CameraInfo), for the pose.
+// Parameters: ~prototypes (directory), ~config (YAML file), every key of config/amcr.yaml,
+//             ~metres_per_pixel (one number, or a map label -> number), ~frame_prefix (default amcr/).
 //
 // No callback throws: bad input is reported (throttled) and skipped.
 #pragma once
@@ -17,13 +21,18 @@
 #include <image_transport/image_transport.h>
 #include <nodelet/nodelet.h>
 #include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <std_srvs/Empty.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <map>
 
 #include "amcr/params.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "report_throttle.h"
 #include <amcr/LoadPrototypes.h>
+#include <amcr/Recognitions.h>
 
 namespace amcr_ros
 {
@@ -33,6 +42,12 @@ private:
   void onInit() override;
 
   void imageCb(const sensor_msgs::ImageConstPtr& msg);
+  void loadPoseParameters();
+  void cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg);
+  /// Fills the poses of `out`'s objects and broadcasts their frames.
+  void fillPoses(amcr::Recognitions& out);
+  /// Metric size of a prototype pixel for `label`, 0 when unknown.
+  double metresPerPixel(const std::string& label) const;
   bool resetCb(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool loadPrototypesCb(amcr::LoadPrototypes::Request& request, amcr::LoadPrototypes::Response& response);
 
@@ -53,6 +68,15 @@ private:
 
   std::mutex report_mutex_;
   ReportThrottle input_errors_{5.0};  // per problem text, seconds
+
+  // Pose (set in onInit, then read only).
+  double metres_per_pixel_ = 0.0;
+  std::map<std::string, double> metres_per_pixel_by_label_;
+  std::string frame_prefix_;
+  std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;
+  ros::Subscriber sub_info_;
+  std::mutex info_mutex_;
+  sensor_msgs::CameraInfoConstPtr camera_info_;
 
   std::mutex recognizer_mutex_;  // everything below
   amcr::Params params_;

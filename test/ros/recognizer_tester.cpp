@@ -15,6 +15,12 @@
 //   ~max_frames        frames within which the label must be recognized (default 100)
 //   ~corner_tolerance  mean corner error of prototype_to_image, px (default 6)
 //   ~timeout           seconds to wait for any one answer (default 20)
+//   ~check_pose        publish camera_info (~camera_info topic, fx = fy = ~focal px, centre of the
+//                      image) and check the pose and tf frame (default false: then pose_valid must be
+//                      false). Needs a similarity (scale_x = scale_y, shear = 0): the scene is then the
+//                      exact image of a plane parallel to the image plane, at z = focal * m/px / scale.
+//   ~metres_per_pixel  the value the nodelet was given (default 0.001)
+//   ~translation_tolerance  of the pose and the tf frame, m (default 0.02)
 #include <algorithm>
 #include <condition_variable>
 #include <deque>
@@ -31,7 +37,10 @@
 #include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <std_srvs/Empty.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 
 #include <amcr/LoadPrototypes.h>
 #include <amcr/PrototypeTable.h>
@@ -133,6 +142,13 @@ protected:
     pnh.param("scale_y", scale_y, scale_y);
     pnh.param("shear", shear, shear);
     pnh.param("clutter_seed", clutter_seed, clutter_seed);
+    pnh.param("check_pose", check_pose_, false);
+    pnh.param<std::string>("camera_info", info_topic_, "/camera/camera_info");
+    pnh.param("focal", focal_, 500.0);
+    pnh.param("metres_per_pixel", metres_per_pixel_, 0.001);
+    pnh.param("translation_tolerance", translation_tolerance_, 0.02);
+    similarity_ = std::abs(scale_x - scale_y) < 1e-9 && std::abs(shear) < 1e-9;
+    scale_ = scale_x;
 
     truth_ = amcr_test::makeAffine(amcr_test::prototypeCentre(), {320.0, 240.0}, rotation, scale_x, scale_y, shear);
     scene_.size = cv::Size(640, 480);
@@ -149,12 +165,18 @@ protected:
     image_pub_ = nh_->advertise<sensor_msgs::Image>(image_topic_, 10);
     recognitions_.subscribe(*nh_, node_ + "/recognitions");
     prototypes_.subscribe(*nh_, node_ + "/prototypes");
-    log_.subscribe(*nh_, "/rosout", 1000);  // every node publishes it: no aggregator needed
+    log_.subscribe(*nh_, "/rosout", 1000);
+    info_pub_ = nh_->advertise<sensor_msgs::CameraInfo>(info_topic_, 1, true);
+    tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
+    tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, *nh_);  // every node publishes it: no aggregator needed
   }
 
   static void TearDownTestSuite()
   {
     image_pub_.shutdown();
+    info_pub_.shutdown();
+    tf_listener_.reset();
+    tf_buffer_.reset();
     recognitions_.shutdown();
     prototypes_.shutdown();
     log_.shutdown();
@@ -232,7 +254,27 @@ protected:
     return !r.objects.empty() && r.objects[0].label == label_ && cornerError(r.objects[0]) <= corner_tolerance_;
   }
 
-  static std::string node_, image_topic_, label_;
+  static sensor_msgs::CameraInfo cameraInfo(double focal)
+  {
+    sensor_msgs::CameraInfo info;
+    info.header.frame_id = "camera";
+    info.width = static_cast<std::uint32_t>(scene_.size.width);
+    info.height = static_cast<std::uint32_t>(scene_.size.height);
+    info.distortion_model = "plumb_bob";
+    info.D = {0, 0, 0, 0, 0};
+    const double cx = 0.5 * (scene_.size.width - 1), cy = 0.5 * (scene_.size.height - 1);
+    info.K = {focal, 0, cx, 0, focal, cy, 0, 0, 1};
+    info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    info.P = {focal, 0, cx, 0, 0, focal, cy, 0, 0, 0, 1, 0};
+    return info;
+  }
+
+  static std::string node_, image_topic_, label_, info_topic_;
+  static bool check_pose_, similarity_;
+  static double focal_, metres_per_pixel_, translation_tolerance_, scale_;
+  static ros::Publisher info_pub_;
+  static std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
+  static std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   static int max_frames_;
   static double corner_tolerance_, timeout_;
   static amcr::Affine truth_;
@@ -249,7 +291,13 @@ protected:
   static std::uint64_t noise_index_;
 };
 
-std::string RecognizerTest::node_, RecognizerTest::image_topic_, RecognizerTest::label_;
+std::string RecognizerTest::node_, RecognizerTest::image_topic_, RecognizerTest::label_, RecognizerTest::info_topic_;
+bool RecognizerTest::check_pose_ = false, RecognizerTest::similarity_ = false;
+double RecognizerTest::focal_ = 500.0, RecognizerTest::metres_per_pixel_ = 0.001,
+       RecognizerTest::translation_tolerance_ = 0.02, RecognizerTest::scale_ = 1.0;
+ros::Publisher RecognizerTest::info_pub_;
+std::unique_ptr<tf2_ros::Buffer> RecognizerTest::tf_buffer_;
+std::unique_ptr<tf2_ros::TransformListener> RecognizerTest::tf_listener_;
 int RecognizerTest::max_frames_ = 100;
 double RecognizerTest::corner_tolerance_ = 6.0, RecognizerTest::timeout_ = 20.0;
 amcr::Affine RecognizerTest::truth_;
@@ -317,9 +365,65 @@ TEST_F(RecognizerTest, RecognizesTheShownPrototype)
   EXPECT_GE(object.track_id, 1);
   EXPECT_FALSE(object.outline.points.empty());
   EXPECT_FALSE(object.correspondences.empty());
-  EXPECT_FALSE(object.pose_valid);  // no camera_info in this test
+  if (!check_pose_)
+  {
+    EXPECT_FALSE(object.pose_valid) << "a pose without camera_info";
+  }
   RecordProperty("frames_to_recognition", frames + 1);
   ROS_INFO("%s recognized after %d frames, corner error %.2f px", label_.c_str(), frames + 1, cornerError(object));
+}
+
+// With camera_info and a metric size: the pose and the tf frame match the
+// truth. A camera_info with zeros in K is refused first.
+TEST_F(RecognizerTest, PoseAndFrameWithCameraInfo)
+{
+  if (!check_pose_)
+    return;  // this configuration checks that no pose comes without camera_info (above)
+  ASSERT_TRUE(similarity_) << "~check_pose needs scale_x = scale_y and shear = 0";
+  ensurePrototypes();
+  ASSERT_TRUE(waitForNodeletSubscription());
+  ASSERT_TRUE(waitUntil([] { return info_pub_.getNumSubscribers() > 0; }, timeout_))
+      << "nobody subscribes to " << info_topic_;
+  info_pub_.publish(cameraInfo(0.0));
+  EXPECT_TRUE(waitForLog(rosgraph_msgs::Log::ERROR, "zeros in K")) << "no error about a camera_info with zeros in K";
+  info_pub_.publish(cameraInfo(focal_));
+
+  // The truth: prototype pixel (0, 0) is the frame's origin; the plane is parallel to the image.
+  const double z = focal_ * metres_per_pixel_ / scale_;
+  const double cx = 0.5 * (scene_.size.width - 1), cy = 0.5 * (scene_.size.height - 1);
+  const cv::Point2d origin(truth_(0, 2), truth_(1, 2));
+  const tf2::Vector3 expected((origin.x - cx) * z / focal_, (origin.y - cy) * z / focal_, z);
+
+  amcr::RecognitionsConstPtr last;
+  int frames = 0;
+  for (; frames < max_frames_; ++frames)
+  {
+    last = publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp()));
+    ASSERT_TRUE(last);
+    if (recognizedRight(*last) && last->objects[0].pose_valid)
+      break;
+  }
+  ASSERT_LT(frames, max_frames_) << "no pose for " << label_ << " within " << max_frames_ << " frames";
+  const amcr::Recognition& object = last->objects[0];
+  const tf2::Vector3 position(object.pose.position.x, object.pose.position.y, object.pose.position.z);
+  EXPECT_LT((position - expected).length(), translation_tolerance_)
+      << "pose (" << position.x() << ", " << position.y() << ", " << position.z() << ") m, truth (" << expected.x()
+      << ", " << expected.y() << ", " << expected.z() << ") m";
+
+  const std::string child = "amcr/" + object.label + "_" + std::to_string(object.track_id);
+  geometry_msgs::TransformStamped t;
+  try
+  {
+    t = tf_buffer_->lookupTransform("camera", child, last->header.stamp, ros::Duration(timeout_));
+  }
+  catch (const tf2::TransformException& e)
+  {
+    FAIL() << "no tf frame " << child << ": " << e.what();
+  }
+  const tf2::Vector3 tf_position(t.transform.translation.x, t.transform.translation.y, t.transform.translation.z);
+  EXPECT_LT((tf_position - expected).length(), translation_tolerance_);
+  ROS_INFO("pose of %s: (%.4f, %.4f, %.4f) m, truth (%.4f, %.4f, %.4f) m", child.c_str(), position.x(), position.y(),
+           position.z(), expected.x(), expected.y(), expected.z());
 }
 
 // ~overlay is drawn while someone subscribes: bgr8, the input's header, and
