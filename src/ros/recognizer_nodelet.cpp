@@ -71,6 +71,23 @@ void RecognizerNodelet::onInit()
   // filter must see the stream even while nobody listens yet.
   const image_transport::TransportHints hints("raw", ros::TransportHints(), private_nh);
   sub_image_ = it_->subscribe("image", 1, &RecognizerNodelet::imageCb, this, hints);
+
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, private_nh, getName());
+  updater_->setHardwareID("none");
+  updater_->add("recognizer", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    stats_.report(status);
+    status.add("overlay subscribers", pub_overlay_.getNumSubscribers());
+  });
+  diagnostics_timer_ = private_nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
+    try
+    {
+      updater_->update();
+    }
+    catch (const std::exception& e)
+    {
+      NODELET_ERROR_THROTTLE(60.0, "diagnostics: %s", e.what());
+    }
+  });
 }
 
 void RecognizerNodelet::loadPoseParameters()
@@ -188,11 +205,15 @@ std::string RecognizerNodelet::loadPrototypes(const std::string& directory)
     memory_directory_ = directory;
     last_stamp_ = ros::Time();
     NODELET_INFO("loaded %zu prototypes from '%s'", memory->size(), directory.c_str());
+    stats_.setPrototypes(memory->size(), "");
     return "";
   }
   catch (const std::exception& e)
   {
-    return "cannot load prototypes from '" + directory + "': " + e.what();
+    const std::string error = "cannot load prototypes from '" + directory + "': " + e.what();
+    if (!memory_)
+      stats_.setPrototypes(0, error);
+    return error;
   }
 }
 
@@ -236,10 +257,12 @@ void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
 {
   try
   {
+    stats_.received(msg->header.seq);
     std::string why;
     cv_bridge::CvImageConstPtr image = toCoreImage(msg, why);
     if (!image)
     {
+      stats_.skipped();
       reportInputError("image skipped: " + why);
       return;
     }
@@ -247,6 +270,7 @@ void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
     std::lock_guard<std::mutex> lock(recognizer_mutex_);
     if (!recognizer_)
     {
+      stats_.skipped();
       NODELET_ERROR_THROTTLE(5.0, "no prototypes loaded: images are ignored until %s succeeds",
                              getPrivateNodeHandle().resolveName("load_prototypes").c_str());
       return;
@@ -272,12 +296,14 @@ void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
     out.processing_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     fillPoses(out);
     pub_recognitions_.publish(out);
+    stats_.processed(out, result.converged_v_particles, params_.num_v_particles);
 
     if (pub_overlay_.getNumSubscribers() > 0)
     {
       cv_bridge::CvImage overlay(msg->header, sensor_msgs::image_encodings::BGR8,
                                  amcr::drawOverlay(image->image, *recognizer_, result));
       pub_overlay_.publish(overlay.toImageMsg());
+      stats_.overlayDrawn();
     }
   }
   catch (const std::exception& e)

@@ -6,7 +6,9 @@
 //             subscribed), ~prototypes (amcr/PrototypeTable, latched).
 // Services:   ~reset (std_srvs/Empty), ~load_prototypes (amcr/LoadPrototypes).
 //             tf2 frames <~frame_prefix><label>_<track_id>, children of the image's frame, for every object
-//             whose pose is known (camera_info and ~metres_per_pixel).
+//             whose pose is known (camera_info and ~metres_per_pixel); /diagnostics (input rate,
+//             processing time, dropped and skipped frames, overlays drawn, converged V-particles,
+//             leading hypotheses).
 // Subscribes: camera_info (sensor_msgs/CameraInfo), for the pose.
 // Parameters: ~prototypes (directory), ~config (YAML file), every key of config/amcr.yaml,
 //             ~metres_per_pixel (one number, or a map label -> number), ~frame_prefix (default amcr/).
@@ -23,6 +25,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <std_srvs/Empty.h>
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <map>
@@ -30,6 +33,7 @@
 #include "amcr/params.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
+#include "recognizer_stats.h"
 #include "report_throttle.h"
 #include <amcr/LoadPrototypes.h>
 #include <amcr/Recognitions.h>
@@ -65,6 +69,10 @@ private:
   ros::Publisher pub_prototypes_;
   ros::ServiceServer srv_reset_;
   ros::ServiceServer srv_load_;
+
+  RecognizerStats stats_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer diagnostics_timer_;
 
   std::mutex report_mutex_;
   ReportThrottle input_errors_{5.0};  // per problem text, seconds

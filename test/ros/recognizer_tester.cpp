@@ -30,6 +30,7 @@
 #include <vector>
 
 #include <cv_bridge/cv_bridge.h>
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -166,6 +167,7 @@ protected:
     recognitions_.subscribe(*nh_, node_ + "/recognitions");
     prototypes_.subscribe(*nh_, node_ + "/prototypes");
     log_.subscribe(*nh_, "/rosout", 1000);
+    diagnostics_.subscribe(*nh_, "/diagnostics", 100);
     info_pub_ = nh_->advertise<sensor_msgs::CameraInfo>(info_topic_, 1, true);
     tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
     tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, *nh_);  // every node publishes it: no aggregator needed
@@ -180,6 +182,7 @@ protected:
     recognitions_.shutdown();
     prototypes_.shutdown();
     log_.shutdown();
+    diagnostics_.shutdown();
     nh_.reset();
     dir_.reset();
   }
@@ -243,6 +246,22 @@ protected:
                timeout_) != nullptr;
   }
 
+  /// A value of the nodelet's "recognizer" status, or null when `array` has none.
+  static const std::string* diagnosticValue(const diagnostic_msgs::DiagnosticArray& array, const std::string& key)
+  {
+    for (const auto& status : array.status)
+      if (status.name.find("recognizer") != std::string::npos)
+        for (const auto& kv : status.values)
+          if (kv.key == key)
+            return &kv.value;
+    return nullptr;
+  }
+  static long diagnosticNumber(const diagnostic_msgs::DiagnosticArray& array, const std::string& key)
+  {
+    const std::string* v = diagnosticValue(array, key);
+    return v ? std::stol(*v) : -1;
+  }
+
   static double cornerError(const amcr::Recognition& object)
   {
     const auto& a = object.prototype_to_image;
@@ -286,6 +305,7 @@ protected:
   static Inbox<amcr::Recognitions> recognitions_;
   static Inbox<amcr::PrototypeTable> prototypes_;
   static Inbox<rosgraph_msgs::Log> log_;
+  static Inbox<diagnostic_msgs::DiagnosticArray> diagnostics_;
   static bool loaded_;
   static ros::Time stamp_;
   static std::uint64_t noise_index_;
@@ -309,6 +329,7 @@ ros::Publisher RecognizerTest::image_pub_;
 Inbox<amcr::Recognitions> RecognizerTest::recognitions_;
 Inbox<amcr::PrototypeTable> RecognizerTest::prototypes_;
 Inbox<rosgraph_msgs::Log> RecognizerTest::log_;
+Inbox<diagnostic_msgs::DiagnosticArray> RecognizerTest::diagnostics_;
 bool RecognizerTest::loaded_ = false;
 ros::Time RecognizerTest::stamp_(1000.0);
 std::uint64_t RecognizerTest::noise_index_ = 0;
@@ -449,6 +470,39 @@ TEST_F(RecognizerTest, OverlayWhileSubscribed)
   EXPECT_GE(static_cast<int>(got->height), scene_.size.height);
   EXPECT_EQ(got->header.frame_id, "camera");
   overlay.shutdown();
+}
+
+// /diagnostics reports the stream and the filter; overlays are drawn only
+// while someone subscribes to ~overlay (the counter stands still without).
+TEST_F(RecognizerTest, DiagnosticsAndNoOverlayWithoutSubscribers)
+{
+  ensurePrototypes();
+  ASSERT_TRUE(waitForNodeletSubscription());
+  ASSERT_TRUE(publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp())));
+  diagnostics_.clear();
+  auto idle = diagnostics_.waitFor(
+      [](const diagnostic_msgs::DiagnosticArray& a) {
+        return diagnosticNumber(a, "overlay subscribers") == 0 && diagnosticNumber(a, "frames processed") > 0;
+      },
+      timeout_);
+  ASSERT_TRUE(idle) << "no diagnostics of the recognizer without overlay subscribers";
+  const long processed = diagnosticNumber(*idle, "frames processed");
+  const long overlays = diagnosticNumber(*idle, "overlays drawn");
+  EXPECT_GT(overlays, 0) << "OverlayWhileSubscribed (run before) drew none";
+  EXPECT_EQ(diagnosticNumber(*idle, "prototypes"), 3);
+  EXPECT_TRUE(diagnosticValue(*idle, "input rate (Hz)"));
+  EXPECT_TRUE(diagnosticValue(*idle, "processing time, mean (ms)"));
+  EXPECT_TRUE(diagnosticValue(*idle, "converged V-particles"));
+  EXPECT_TRUE(diagnosticValue(*idle, "leading hypotheses"));
+
+  constexpr int kFrames = 5;
+  for (int i = 0; i < kFrames; ++i)
+    ASSERT_TRUE(publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp())));
+  auto later = diagnostics_.waitFor(
+      [&](const diagnostic_msgs::DiagnosticArray& a) { return diagnosticNumber(a, "frames processed") >= processed + kFrames; },
+      timeout_);
+  ASSERT_TRUE(later) << "frames processed did not grow in /diagnostics";
+  EXPECT_EQ(diagnosticNumber(*later, "overlays drawn"), overlays) << "overlays drawn while nobody subscribed";
 }
 
 // ~reset restarts the filter: the next frame is iteration 1.
