@@ -14,6 +14,7 @@
 #include "image_input.h"
 #include "message_conversion.h"
 #include "planar_pose.h"
+#include "reconfigure.h"
 #include "parameter_loading.h"
 #include <amcr/PrototypeTable.h>
 #include <amcr/Recognitions.h>
@@ -72,6 +73,18 @@ void RecognizerNodelet::onInit()
   const image_transport::TransportHints hints("raw", ros::TransportHints(), private_nh);
   sub_image_ = it_->subscribe("image", 1, &RecognizerNodelet::imageCb, this, hints);
 
+  // dynamic_reconfigure starts from the parameters loaded above (~config
+  // included), not from the .cfg defaults.
+  amcr::AMCRConfig initial;
+  {
+    std::lock_guard<std::mutex> lock(recognizer_mutex_);
+    initial = toConfig(params_);
+  }
+  reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<amcr::AMCRConfig>>(reconfigure_mutex_, private_nh);
+  reconfigure_server_->updateConfig(initial);
+  reconfigure_server_->setCallback(
+      [this](amcr::AMCRConfig& config, std::uint32_t level) { reconfigureCb(config, level); });
+
   updater_ = std::make_unique<diagnostic_updater::Updater>(nh, private_nh, getName());
   updater_->setHardwareID("none");
   updater_->add("recognizer", [this](diagnostic_updater::DiagnosticStatusWrapper& status) {
@@ -88,6 +101,57 @@ void RecognizerNodelet::onInit()
       NODELET_ERROR_THROTTLE(60.0, "diagnostics: %s", e.what());
     }
   });
+}
+
+void RecognizerNodelet::reconfigureCb(amcr::AMCRConfig& config, std::uint32_t level)
+{
+  try
+  {
+    std::lock_guard<std::mutex> lock(recognizer_mutex_);
+    amcr::Params changed = fromConfig(config, params_);
+    changed.validate();
+    if (getParameterChanges(changed).empty())
+      return;  // the initial call, or nothing new
+    const std::string what = getParameterChanges(changed);
+    std::shared_ptr<const amcr::PrototypeMemory> memory = memory_;
+    if (memory && ((level & kReconfigureTables) || tablesDiffer(changed, params_)))
+      memory = std::make_shared<amcr::PrototypeMemory>(amcr::PrototypeMemory::loadDirectory(
+          memory_directory_, changed, [this](const std::string& w) { NODELET_WARN("prototypes: %s", w.c_str()); }));
+    const bool tables_rebuilt = memory != memory_;
+    std::unique_ptr<amcr::Recognizer> rebuilt;
+    if (memory)
+      rebuilt = std::make_unique<amcr::Recognizer>(changed, memory);
+    // Nothing failed: swap everything at once.
+    params_ = changed;
+    memory_ = memory;
+    recognizer_ = std::move(rebuilt);
+    last_stamp_ = ros::Time();
+    NODELET_INFO("reconfigured (%s): %s", what.c_str(),
+                 !memory_ ? "no prototypes loaded yet"
+                          : tables_rebuilt ? "prototype tables and filter rebuilt" : "filter rebuilt");
+  }
+  catch (const std::exception& e)
+  {
+    NODELET_ERROR("reconfiguration refused, the previous parameters stay: %s", e.what());
+    std::lock_guard<std::mutex> lock(recognizer_mutex_);
+    config = toConfig(params_);  // what is in use is what the client sees
+  }
+}
+
+std::string RecognizerNodelet::getParameterChanges(const amcr::Params& changed) const
+{
+  std::string out;
+  for (const amcr::ParameterInfo& info : amcr::parameterTable())
+  {
+    const double before = amcr::getParameter(params_, info.name), after = amcr::getParameter(changed, info.name);
+    if (before != after)
+      out += (out.empty() ? "" : ", ") + info.name + " " + std::to_string(before) + " -> " + std::to_string(after);
+  }
+  if (changed.likelihood_form != params_.likelihood_form)
+    out += (out.empty() ? "" : ", ") + std::string("likelihood_form ") + amcr::toString(changed.likelihood_form);
+  if (changed.deviation_space != params_.deviation_space)
+    out += (out.empty() ? "" : ", ") + std::string("deviation_space ") + amcr::toString(changed.deviation_space);
+  return out;
 }
 
 void RecognizerNodelet::loadPoseParameters()

@@ -12,6 +12,8 @@
 // Subscribes: camera_info (sensor_msgs/CameraInfo), for the pose.
 // Parameters: ~prototypes (directory), ~config (YAML file), every key of config/amcr.yaml,
 //             ~metres_per_pixel (one number, or a map label -> number), ~frame_prefix (default amcr/).
+//             The filter's tunables are live through dynamic_reconfigure (cfg/AMCR.cfg): a change
+//             rebuilds the filter under the lock, the subscription stays.
 //
 // No callback throws: bad input is reported (throttled) and skipped.
 #pragma once
@@ -25,7 +27,9 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <std_srvs/Empty.h>
+#include <boost/thread/recursive_mutex.hpp>
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <map>
@@ -35,6 +39,7 @@
 #include "amcr/recognizer.h"
 #include "recognizer_stats.h"
 #include "report_throttle.h"
+#include <amcr/AMCRConfig.h>
 #include <amcr/LoadPrototypes.h>
 #include <amcr/Recognitions.h>
 
@@ -47,6 +52,9 @@ private:
 
   void imageCb(const sensor_msgs::ImageConstPtr& msg);
   void loadPoseParameters();
+  void reconfigureCb(amcr::AMCRConfig& config, std::uint32_t level);
+  /// The parameters that differ from params_, readable; empty when none (recognizer_mutex_ held).
+  std::string getParameterChanges(const amcr::Params& changed) const;
   void cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg);
   /// Fills the poses of `out`'s objects and broadcasts their frames.
   void fillPoses(amcr::Recognitions& out);
@@ -69,6 +77,9 @@ private:
   ros::Publisher pub_prototypes_;
   ros::ServiceServer srv_reset_;
   ros::ServiceServer srv_load_;
+
+  boost::recursive_mutex reconfigure_mutex_;
+  std::shared_ptr<dynamic_reconfigure::Server<amcr::AMCRConfig>> reconfigure_server_;
 
   RecognizerStats stats_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;

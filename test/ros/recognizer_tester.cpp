@@ -31,6 +31,7 @@
 
 #include <cv_bridge/cv_bridge.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -517,6 +518,49 @@ TEST_F(RecognizerTest, ResetRestartsTheFilter)
   ASSERT_TRUE(ros::service::call(node_ + "/reset", empty));
   auto after = publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp()));
   ASSERT_TRUE(after);
+  EXPECT_EQ(after->iteration, 1);
+}
+
+// dynamic_reconfigure: a new particle count rebuilds the filter (iteration 1,
+// the new count in /diagnostics); a new table size rebuilds the prototype
+// tables; the subscription stays and recognitions keep coming.
+TEST_F(RecognizerTest, ReconfigureRebuildsTheFilter)
+{
+  ensurePrototypes();
+  ASSERT_TRUE(waitForNodeletSubscription());
+  ASSERT_TRUE(ros::service::waitForService(node_ + "/set_parameters", ros::Duration(timeout_)));
+  dynamic_reconfigure::Reconfigure srv;
+  dynamic_reconfigure::IntParameter count;
+  count.name = "num_v_particles";
+  count.value = 40;
+  srv.request.config.ints.push_back(count);
+  ASSERT_TRUE(ros::service::call(node_ + "/set_parameters", srv));
+  bool echoed = false;
+  for (const auto& p : srv.response.config.ints)
+    echoed = echoed || (p.name == "num_v_particles" && p.value == 40);
+  EXPECT_TRUE(echoed) << "the answer does not carry num_v_particles = 40";
+
+  auto first = publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp()));
+  ASSERT_TRUE(first) << "no recognitions after reconfiguring";
+  EXPECT_EQ(first->iteration, 1);
+  diagnostics_.clear();
+  auto report = diagnostics_.waitFor(
+      [](const diagnostic_msgs::DiagnosticArray& a) {
+        const std::string* v = diagnosticValue(a, "converged V-particles");
+        return v && v->find("of 40") != std::string::npos;
+      },
+      timeout_);
+  EXPECT_TRUE(report) << "/diagnostics does not show 40 V-particles";
+
+  dynamic_reconfigure::Reconfigure tables;
+  dynamic_reconfigure::IntParameter size;
+  size.name = "prototype_size";
+  size.value = 96;
+  tables.request.config.ints.push_back(size);
+  ASSERT_TRUE(ros::service::call(node_ + "/set_parameters", tables));
+  EXPECT_TRUE(waitForLog(rosgraph_msgs::Log::INFO, "prototype tables and filter rebuilt"));
+  auto after = publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp()));
+  ASSERT_TRUE(after) << "no recognitions after rebuilding the tables";
   EXPECT_EQ(after->iteration, 1);
 }
 
