@@ -71,7 +71,14 @@ void RecognizerNodelet::onInit()
   // The input is always subscribed: recognition is spread over frames, so the
   // filter must see the stream even while nobody listens yet.
   const image_transport::TransportHints hints("raw", ros::TransportHints(), private_nh);
-  sub_image_ = it_->subscribe("image", 1, &RecognizerNodelet::imageCb, this, hints);
+  int queue_size = 1;
+  private_nh.param("queue_size", queue_size, 1);
+  if (queue_size < 1)
+  {
+    NODELET_ERROR("~queue_size must be >= 1, got %d: using 1", queue_size);
+    queue_size = 1;
+  }
+  sub_image_ = it_->subscribe("image", static_cast<std::uint32_t>(queue_size), &RecognizerNodelet::imageCb, this, hints);
 
   // dynamic_reconfigure starts from the parameters loaded above (~config
   // included), not from the .cfg defaults.

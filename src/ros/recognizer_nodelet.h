@@ -11,6 +11,7 @@
 //             leading hypotheses).
 // Subscribes: camera_info (sensor_msgs/CameraInfo), for the pose.
 // Parameters: ~prototypes (directory), ~config (YAML file), every key of config/amcr.yaml,
+//             ~queue_size (images queued, default 1: live; bags want more),
 //             ~metres_per_pixel (one number, or a map label -> number), ~frame_prefix (default amcr/).
 //             The filter's tunables are live through dynamic_reconfigure (cfg/AMCR.cfg): a change
 //             rebuilds the filter under the lock, the subscription stays.
