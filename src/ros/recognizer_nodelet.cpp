@@ -379,8 +379,20 @@ void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
   }
   catch (const std::exception& e)
   {
-    reportInputError("image (" + std::to_string(msg->width) + " x " + std::to_string(msg->height) + ", '" +
-                     msg->encoding + "') skipped: " + e.what());
+    stats_.skipped();
+    try
+    {
+      reportInputError("image (" + std::to_string(msg->width) + " x " + std::to_string(msg->height) + ", '" +
+                       msg->encoding + "') skipped: " + e.what());
+    }
+    catch (...)  // nothing may leave a callback: it would take the manager down
+    {
+    }
+  }
+  catch (...)
+  {
+    stats_.skipped();
+    NODELET_ERROR_THROTTLE(5.0, "image skipped: unknown error");
   }
 }
 }  // namespace amcr_ros
