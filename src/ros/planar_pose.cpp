@@ -48,9 +48,11 @@ bool planarPose(const amcr::Affine& a, int width, int height, double metres_per_
     }
     const cv::Matx33d k(info.K[0], info.K[1], info.K[2], info.K[3], info.K[4], info.K[5], info.K[6], info.K[7],
                         info.K[8]);
-    cv::Mat d(info.D, true);
+    cv::Mat d;  // empty: no distortion (a camera_info may leave D empty)
+    if (!info.D.empty())
+      d = cv::Mat(info.D, true).reshape(1, 1);
     cv::Mat rvec, tvec;
-    if (!cv::solvePnP(object, image, k, d.reshape(1, 1), rvec, tvec, false, cv::SOLVEPNP_IPPE))
+    if (!cv::solvePnP(object, image, k, d, rvec, tvec, false, cv::SOLVEPNP_IPPE))
     {
       why = "solvePnP found no pose";
       return false;
