@@ -20,6 +20,8 @@ AMCR_PACKAGES=(
   libtf2-ros-dev libtf2-eigen-dev python3-rostest python3-cv-bridge python3-opencv
   libopencv-dev libeigen3-dev libgtest-dev python3-dynamic-reconfigure
   libdiagnostic-updater-dev libnodeletlib-dev librosbag-dev opencv-doc libbenchmark-dev
+  pluginlib-dev ros-message-generation libstd-srvs-dev libgeometry-msgs-dev libsensor-msgs-dev
+  librostest-dev python3-rosbag python3-diagnostic-msgs
 )
 
 # Debian's python3, never a pyenv/venv one (ros-on-debian.md, gotcha 1).

@@ -1,0 +1,87 @@
+#include "message_conversion.h"
+
+#include <algorithm>
+
+#include <geometry_msgs/Point32.h>
+
+namespace amcr_ros
+{
+namespace
+{
+void toArray(const amcr::Affine& a, boost::array<double, 6>& out)
+{
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c)
+      out[static_cast<std::size_t>(r * 3 + c)] = a(r, c);
+}
+}  // namespace
+
+amcr::Recognition toMsg(const amcr::RecognizedObject& object)
+{
+  amcr::Recognition msg;
+  msg.label = object.label;
+  msg.prototype_id = object.prototype_id;
+  msg.track_id = object.track_id;
+  msg.score = object.score;
+  msg.support = object.support;
+  toArray(object.image_to_prototype, msg.image_to_prototype);
+  toArray(object.prototype_to_image, msg.prototype_to_image);
+  msg.outline.points.reserve(object.outline.size());
+  for (const cv::Point2d& p : object.outline)
+  {
+    geometry_msgs::Point32 q;
+    q.x = static_cast<float>(p.x);
+    q.y = static_cast<float>(p.y);
+    q.z = 0.f;
+    msg.outline.points.push_back(q);
+  }
+  msg.correspondences.reserve(object.correspondences.size());
+  for (const amcr::Correspondence& c : object.correspondences)
+  {
+    amcr::PointCorrespondence m;
+    m.image_x = c.image.x;
+    m.image_y = c.image.y;
+    m.prototype_x = c.prototype.x;
+    m.prototype_y = c.prototype.y;
+    msg.correspondences.push_back(m);
+  }
+  msg.pose_valid = false;
+  msg.pose.orientation.w = 1.0;
+  return msg;
+}
+
+amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::Header& header)
+{
+  amcr::Recognitions msg;
+  msg.header = header;
+  msg.iteration = result.iteration;
+  msg.processing_ms = result.time_ms;
+  std::vector<const amcr::RecognizedObject*> sorted;
+  for (const amcr::RecognizedObject& o : result.objects)
+    sorted.push_back(&o);
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const amcr::RecognizedObject* a, const amcr::RecognizedObject* b) { return a->score > b->score; });
+  for (const amcr::RecognizedObject* o : sorted)
+    msg.objects.push_back(toMsg(*o));
+  return msg;
+}
+
+amcr::PrototypeTable toMsg(const amcr::PrototypeMemory* memory, const std::string& directory, const ros::Time& stamp)
+{
+  amcr::PrototypeTable msg;
+  msg.header.stamp = stamp;
+  msg.directory = directory;
+  if (memory == nullptr)
+    return msg;
+  for (std::size_t i = 0; i < memory->size(); ++i)
+  {
+    amcr::PrototypeInfo info;
+    info.label = (*memory)[i].label();
+    info.prototype_id = static_cast<int>(i);
+    info.width = (*memory)[i].originalSize().width;
+    info.height = (*memory)[i].originalSize().height;
+    msg.prototypes.push_back(info);
+  }
+  return msg;
+}
+}  // namespace amcr_ros

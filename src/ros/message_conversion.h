@@ -1,0 +1,26 @@
+// Core results -> amcr messages. No ROS node needed: plain functions, used by
+// the nodelet and testable on their own.
+#pragma once
+
+#include <string>
+
+#include <std_msgs/Header.h>
+
+#include "amcr/prototype_memory.h"
+#include "amcr/recognition_result.h"
+#include <amcr/PrototypeTable.h>
+#include <amcr/Recognition.h>
+#include <amcr/Recognitions.h>
+
+namespace amcr_ros
+{
+/// One object; pose_valid false and the identity pose (the pose is filled elsewhere).
+amcr::Recognition toMsg(const amcr::RecognizedObject& object);
+
+/// A whole result, with the input image's header; objects sorted by score, best first.
+amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::Header& header);
+
+/// The label table of a memory (empty when `memory` is null).
+amcr::PrototypeTable toMsg(const amcr::PrototypeMemory* memory, const std::string& directory,
+                           const ros::Time& stamp);
+}  // namespace amcr_ros

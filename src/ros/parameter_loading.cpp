@@ -1,0 +1,64 @@
+#include "parameter_loading.h"
+
+#include <filesystem>
+#include <system_error>
+
+#include <opencv2/core.hpp>
+
+#include "amcr/errors.h"
+
+namespace amcr_ros
+{
+amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::string>* notes)
+{
+  amcr::Params params;
+  std::string config;
+  if (private_nh.getParam("config", config) && !config.empty())
+  {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(config, error))
+      throw amcr::ParameterError("~config: file '" + config + "' does not exist or is not a file");
+    try
+    {
+      params = amcr::loadParams(config, params);
+    }
+    catch (const cv::Exception& e)
+    {
+      throw amcr::ParameterError("~config: cannot parse '" + config + "': " + e.err);
+    }
+    if (notes)
+      notes->push_back("config file " + config);
+  }
+
+  for (const amcr::ParameterInfo& info : amcr::parameterTable())
+  {
+    if (!private_nh.hasParam(info.name))
+      continue;
+    double value = 0.0;
+    int int_value = 0;
+    if (private_nh.getParam(info.name, value))
+      ;
+    else if (private_nh.getParam(info.name, int_value))
+      value = int_value;
+    else
+      throw amcr::ParameterError("~" + info.name + " must be a number (" + info.unit + ", [" +
+                                 std::to_string(info.min) + ", " + std::to_string(info.max) + "])");
+    amcr::setParameter(params, info.name, value);
+    if (notes)
+      notes->push_back(info.name + " = " + std::to_string(value));
+  }
+  for (const char* name : {"likelihood_form", "deviation_space"})
+  {
+    if (!private_nh.hasParam(name))
+      continue;
+    std::string value;
+    if (!private_nh.getParam(name, value))
+      throw amcr::ParameterError(std::string("~") + name + " must be a string");
+    amcr::setParameter(params, name, value);
+    if (notes)
+      notes->push_back(std::string(name) + " = " + value);
+  }
+  params.validate();
+  return params;
+}
+}  // namespace amcr_ros

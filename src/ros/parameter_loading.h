@@ -1,0 +1,18 @@
+// amcr::Params from a node's private namespace: first the YAML file named by
+// ~config (cv::FileStorage format, config/amcr.yaml), then every parameter of
+// amcr::parameterTable() set individually under the private namespace.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <ros/node_handle.h>
+
+#include "amcr/params.h"
+
+namespace amcr_ros
+{
+/// Reads and validates. Throws amcr::ParameterError (or amcr::Error) naming the
+/// parameter or file at fault; `notes` receives one line per parameter that was set.
+amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::string>* notes = nullptr);
+}  // namespace amcr_ros

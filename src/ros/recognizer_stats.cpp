@@ -1,0 +1,105 @@
+#include "recognizer_stats.h"
+
+#include <cstdio>
+
+#include <diagnostic_msgs/DiagnosticStatus.h>
+
+namespace amcr_ros
+{
+void RecognizerStats::received(std::uint32_t seq)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++received_;
+  if (have_seq_ && seq > last_seq_ + 1)
+    dropped_ += seq - last_seq_ - 1;
+  have_seq_ = true;
+  last_seq_ = seq;
+  arrivals_.push_back(ros::WallTime::now());
+  if (arrivals_.size() > 50)
+    arrivals_.pop_front();
+}
+
+void RecognizerStats::skipped()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++skipped_;
+}
+
+void RecognizerStats::processed(const amcr::Recognitions& out, int converged_v_particles, int num_v_particles)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++processed_;
+  last_ms_ = out.processing_ms;
+  mean_ms_ = processed_ == 1 ? out.processing_ms : 0.9 * mean_ms_ + 0.1 * out.processing_ms;
+  iteration_ = out.iteration;
+  converged_ = converged_v_particles;
+  num_v_ = num_v_particles;
+  leading_.clear();
+  for (const auto& o : out.objects)
+  {
+    char text[160];
+    std::snprintf(text, sizeof(text), "%s%s #%d (score %.2f, support %d)", leading_.empty() ? "" : ", ",
+                  o.label.c_str(), o.track_id, o.score, o.support);
+    leading_ += text;
+  }
+}
+
+void RecognizerStats::overlayDrawn()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++overlays_;
+}
+
+void RecognizerStats::restarted()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  have_seq_ = false;
+}
+
+void RecognizerStats::setPrototypes(std::size_t count, const std::string& problem)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  prototypes_ = count;
+  prototype_problem_ = problem;
+}
+
+void RecognizerStats::report(diagnostic_updater::DiagnosticStatusWrapper& status, double stale_after)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  const ros::WallTime now = ros::WallTime::now();
+  double rate = 0.0;
+  if (arrivals_.size() >= 2)
+  {
+    const double span = (arrivals_.back() - arrivals_.front()).toSec();
+    rate = span > 0.0 ? (arrivals_.size() - 1) / span : 0.0;
+  }
+  const bool stale = arrivals_.empty() || (now - arrivals_.back()).toSec() > stale_after;
+  if (stale)
+    rate = 0.0;
+
+  if (prototypes_ == 0)
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR,
+                   "no prototypes loaded" + (prototype_problem_.empty() ? "" : ": " + prototype_problem_));
+  else if (stale)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no input image for " + std::to_string(stale_after) + " s");
+  else if (skipped_ > skipped_at_last_report_)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "input images skipped (see the log)");
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK,
+                   leading_.empty() ? "recognizing: nothing yet" : "recognized: " + leading_);
+  skipped_at_last_report_ = skipped_;
+
+  status.add("prototypes", prototypes_);
+  status.add("input rate (Hz)", rate);
+  status.add("frames received", received_);
+  status.add("frames processed", processed_);
+  status.add("frames skipped (bad input)", skipped_);
+  status.add("frames dropped (sequence gaps)", dropped_);
+  status.add("overlays drawn", overlays_);
+  status.add("processing time, last (ms)", last_ms_);
+  status.add("processing time, mean (ms)", mean_ms_);
+  status.add("iteration", iteration_);
+  status.add("converged V-particles", std::to_string(converged_) + " of " + std::to_string(num_v_));
+  status.add("leading hypotheses", leading_.empty() ? "none" : leading_);
+}
+}  // namespace amcr_ros

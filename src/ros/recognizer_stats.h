@@ -1,0 +1,50 @@
+// What the nodelet reports on /diagnostics (diagnostic_updater): input rate,
+// processing time per frame, dropped and skipped frames, overlays drawn, and
+// the state of the filter (converged V-particles, leading hypotheses).
+// Thread-safe: the image callback records, the updater's timer reports.
+#pragma once
+
+#include <deque>
+#include <mutex>
+#include <string>
+
+#include <diagnostic_updater/DiagnosticStatusWrapper.h>
+#include <ros/time.h>
+
+#include <amcr/Recognitions.h>
+
+namespace amcr_ros
+{
+class RecognizerStats
+{
+public:
+  /// An image arrived with this header sequence number (gaps count as dropped).
+  void received(std::uint32_t seq);
+  /// An image was refused (bad input, no prototypes).
+  void skipped();
+  /// An image was processed.
+  void processed(const amcr::Recognitions& out, int converged_v_particles, int num_v_particles);
+  void overlayDrawn();
+  /// The filter was reset or rebuilt; the sequence starts again.
+  void restarted();
+  void setPrototypes(std::size_t count, const std::string& problem);
+
+  /// The status: ERROR without prototypes, WARN when no image arrived for
+  /// `stale_after` s or some were skipped since the last report, OK otherwise.
+  void report(diagnostic_updater::DiagnosticStatusWrapper& status, double stale_after = 5.0);
+
+private:
+  std::mutex mutex_;
+  std::deque<ros::WallTime> arrivals_;  // the last 50
+  bool have_seq_ = false;
+  std::uint32_t last_seq_ = 0;
+  long received_ = 0, processed_ = 0, skipped_ = 0, dropped_ = 0, overlays_ = 0;
+  long skipped_at_last_report_ = 0;
+  double last_ms_ = 0.0, mean_ms_ = 0.0;
+  long iteration_ = 0;
+  int converged_ = 0, num_v_ = 0;
+  std::string leading_;
+  std::size_t prototypes_ = 0;
+  std::string prototype_problem_;
+};
+}  // namespace amcr_ros

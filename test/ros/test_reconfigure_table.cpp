@@ -1,0 +1,67 @@
+// cfg/AMCR.cfg against amcr::parameterTable(): the same names, ranges and
+// defaults, and Params survive the round trip through the generated config.
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "amcr/params.h"
+#include "reconfigure.h"
+
+namespace
+{
+TEST(ReconfigureTable, SameParametersRangesAndDefaultsAsTheCore)
+{
+  const auto& descriptions = amcr::AMCRConfig::__getParamDescriptions__();
+  const amcr::AMCRConfig defaults = amcr::AMCRConfig::__getDefault__();
+  // Strings have no range: the bounds keep the defaults' strings.
+  amcr::AMCRConfig min = amcr::AMCRConfig::__getMin__();
+  amcr::AMCRConfig max = amcr::AMCRConfig::__getMax__();
+  for (amcr::AMCRConfig* c : {&min, &max})
+  {
+    c->likelihood_form = defaults.likelihood_form;
+    c->deviation_space = defaults.deviation_space;
+  }
+  std::set<std::string> cfg_names;
+  for (const auto& d : descriptions)
+    cfg_names.insert(d->name);
+
+  std::set<std::string> core_names = {"likelihood_form", "deviation_space"};
+  const amcr::Params core_defaults;
+  const amcr::Params cfg_defaults = amcr_ros::fromConfig(defaults, amcr::Params());
+  const amcr::Params cfg_min = amcr_ros::fromConfig(min, amcr::Params());
+  const amcr::Params cfg_max = amcr_ros::fromConfig(max, amcr::Params());
+  for (const amcr::ParameterInfo& info : amcr::parameterTable())
+  {
+    core_names.insert(info.name);
+    EXPECT_DOUBLE_EQ(amcr::getParameter(cfg_defaults, info.name), amcr::getParameter(core_defaults, info.name))
+        << info.name;
+    // Ranges: the cfg may be narrower where the core's bound is open or beyond int.
+    EXPECT_GE(amcr::getParameter(cfg_min, info.name), info.min) << info.name;
+    EXPECT_LE(amcr::getParameter(cfg_max, info.name), info.max) << info.name;
+    EXPECT_NO_THROW(cfg_min.validate()) << info.name;
+  }
+  EXPECT_EQ(cfg_names, core_names);
+  EXPECT_NO_THROW(cfg_max.validate());
+}
+
+TEST(ReconfigureTable, RoundTrip)
+{
+  amcr::Params p;
+  p.num_v_particles = 17;
+  p.sigma_w = 7.5;
+  p.likelihood_form = amcr::LikelihoodForm::kMixture;
+  p.deviation_space = amcr::DeviationSpace::kPrototype;
+  p.seed = 42;
+  const amcr::Params back = amcr_ros::fromConfig(amcr_ros::toConfig(p), amcr::Params());
+  for (const amcr::ParameterInfo& info : amcr::parameterTable())
+    EXPECT_DOUBLE_EQ(amcr::getParameter(back, info.name), amcr::getParameter(p, info.name)) << info.name;
+  EXPECT_EQ(back.likelihood_form, p.likelihood_form);
+  EXPECT_EQ(back.deviation_space, p.deviation_space);
+  EXPECT_TRUE(amcr_ros::tablesDiffer(p, [&] {
+    amcr::Params q = p;
+    q.prototype_size = 64;
+    return q;
+  }()));
+}
+}  // namespace
