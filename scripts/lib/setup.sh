@@ -21,7 +21,7 @@ AMCR_PACKAGES=(
   libopencv-dev libeigen3-dev libgtest-dev python3-dynamic-reconfigure
   libdiagnostic-updater-dev libnodeletlib-dev librosbag-dev opencv-doc libbenchmark-dev
   pluginlib-dev ros-message-generation libstd-srvs-dev libgeometry-msgs-dev libsensor-msgs-dev
-  librostest-dev python3-rosbag python3-diagnostic-msgs
+  librostest-dev python3-rosbag python3-diagnostic-msgs python3-std-srvs
 )
 
 # Debian's python3, never a pyenv/venv one (ros-on-debian.md, gotcha 1).
