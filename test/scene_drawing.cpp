@@ -215,6 +215,14 @@ void fillPolygon(cv::Mat& image, const std::vector<cv::Point2d>& polygon, double
     }
 }
 
+std::shared_ptr<const amcr::PrototypeMemory> drawnMemory(const std::vector<ShapeId>& shapes, const amcr::Params& params)
+{
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  for (ShapeId id : shapes)
+    memory->add(shapeName(id), drawPrototype(id), params);
+  return memory;
+}
+
 std::vector<cv::Point2d> transformPoints(const amcr::Affine& a, const std::vector<cv::Point2d>& points)
 {
   std::vector<cv::Point2d> out;
@@ -238,6 +246,19 @@ amcr::Affine makeAffine(const cv::Point2d& prototype_centre, const cv::Point2d& 
 cv::Point2d prototypeCentre() { return {(kPrototypeImageSize - 1) / 2.0, (kPrototypeImageSize - 1) / 2.0}; }
 
 cv::Mat renderClean(const Scene& scene)
+{
+  cv::Mat image = renderBackground(scene);
+  drawObjects(image, scene.objects);
+  return image;
+}
+
+void drawObjects(cv::Mat& image, const std::vector<Placement>& objects)
+{
+  for (const Placement& p : objects)
+    fillPolygon(image, transformPoints(p.prototype_to_image, shapePolygon(p.shape)), p.grey);
+}
+
+cv::Mat renderBackground(const Scene& scene)
 {
   const Clutter& c = scene.clutter;
   std::mt19937_64 gen(c.seed);
@@ -312,9 +333,6 @@ cv::Mat renderClean(const Scene& scene)
     const double grey = 20.0 + 110.0 * u01(gen);
     cv::line(image, p0, p1, cv::Scalar(grey), thickness, cv::LINE_AA);
   }
-
-  for (const Placement& p : scene.objects)
-    fillPolygon(image, transformPoints(p.prototype_to_image, shapePolygon(p.shape)), p.grey);
   return image;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -12,6 +13,8 @@
 #include <opencv2/core.hpp>
 
 #include "amcr/affine.h"
+#include "amcr/params.h"
+#include "amcr/prototype_memory.h"
 
 namespace amcr_test
 {
@@ -41,6 +44,10 @@ constexpr int kPrototypeImageSize = 200;
 /// The shape's outline, a simple polygon in prototype-image px (OpenCV
 /// pixel-centre convention: pixel (i, j) is centred on (i, j)).
 std::vector<cv::Point2d> shapePolygon(ShapeId id);
+
+/// A memory of the drawn prototypes of `shapes`, labelled by shapeName().
+std::shared_ptr<const amcr::PrototypeMemory> drawnMemory(const std::vector<ShapeId>& shapes,
+                                                         const amcr::Params& params = amcr::Params());
 
 /// The prototype image: kPrototypeImageSize x kPrototypeImageSize, CV_8UC1,
 /// the filled shape at 255 on 0 (white_on_black) or 0 on 255. Antialiased
@@ -95,11 +102,34 @@ struct Scene
 /// then the objects on top (so nothing occludes them). CV_8UC1.
 cv::Mat renderClean(const Scene& scene);
 
+/// The scene without its objects (the distractors still keep away from them).
+cv::Mat renderBackground(const Scene& scene);
+
+/// Draws `objects` over `image` (CV_8UC1).
+void drawObjects(cv::Mat& image, const std::vector<Placement>& objects);
+
 /// Adds Gaussian noise of `sigma` grey levels drawn from `seed` (saturated to 8 bit).
 cv::Mat addNoise(const cv::Mat& clean, double sigma, std::uint64_t seed);
 
 /// `frames` frames of a static scene, each with its own noise (seed = clutter.seed * 1000 + frame).
 std::vector<cv::Mat> renderSequence(const Scene& scene, int frames);
+
+/// A sequence in which the objects move over a fixed background: frame k
+/// shows `objects_at(k)` over renderBackground(scene) (whose distractors keep
+/// away from scene.objects only), with noise seeded clutter.seed * 1000 + k.
+template <typename ObjectsAt>
+std::vector<cv::Mat> renderMovingSequence(const Scene& scene, int frames, ObjectsAt objects_at)
+{
+  const cv::Mat background = renderBackground(scene);
+  std::vector<cv::Mat> out;
+  for (int k = 0; k < frames; ++k)
+  {
+    cv::Mat clean = background.clone();
+    drawObjects(clean, objects_at(k));
+    out.push_back(addNoise(clean, scene.clutter.noise_sigma, scene.clutter.seed * 1000 + static_cast<std::uint64_t>(k)));
+  }
+  return out;
+}
 
 /// The four corners of a prototype image of `size` (pixel-centre convention):
 /// (0,0), (w-1,0), (w-1,h-1), (0,h-1).

@@ -25,6 +25,8 @@ TEST(ConfigFile, HoldsEveryParameterAtItsDefault)
   }
   EXPECT_EQ(static_cast<std::string>(storage["likelihood_form"]), amcr::toString(defaults.likelihood_form));
   EXPECT_EQ(static_cast<std::string>(storage["deviation_space"]), amcr::toString(defaults.deviation_space));
+  EXPECT_TRUE(storage["prototype_priors"].isMap()) << "prototype_priors is missing from " << kConfigPath;
+  EXPECT_EQ(storage["prototype_priors"].size(), defaults.prototype_priors.size());
 }
 
 TEST(ConfigFile, LoadsWithoutError)

@@ -190,10 +190,14 @@ std::vector<Json> parseFrames(const std::string& text)
     const Json* index = frame.get("frame");
     const Json* time = frame.get("time_ms");
     const Json* iteration = frame.get("iteration");
+    const Json* iterations = frame.get("iterations");
     const Json* objects = frame.get("objects");
     EXPECT_TRUE(index && index->isNumber() && index->number == static_cast<double>(i)) << lines[i];
     EXPECT_TRUE(time && time->isNumber() && time->number >= 0.0) << lines[i];
     EXPECT_TRUE(iteration && iteration->isNumber()) << lines[i];
+    // Without a frame budget every frame runs one whole iteration (none when skipped).
+    EXPECT_TRUE(iterations && iterations->isNumber() &&
+                iterations->number == (frame.get("skipped") ? 0.0 : 1.0)) << lines[i];
     EXPECT_TRUE(objects && objects->isArray()) << lines[i];
     if (objects && objects->isArray())
       for (const Json& object : objects->array)

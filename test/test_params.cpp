@@ -46,12 +46,14 @@ TEST(Params, DefaultsAreValid)
 {
   EXPECT_NO_THROW(amcr::Params{}.validate());
   // The paper's settings that the defaults keep. (num_v_particles is 60, not
-  // the paper's 30: twice the V-particles found every end-to-end scene, see README.)
+  // the paper's 30, and V-particles are resampled every 3 iterations, not 10:
+  // both found the shapes of the end-to-end and tracking tests sooner, see README.)
   const amcr::Params p;
   EXPECT_EQ(p.m_particles_per_prototype, 60);
   EXPECT_DOUBLE_EQ(p.p_outlier, 0.1);
   EXPECT_DOUBLE_EQ(p.p_invalid, 0.1);
-  EXPECT_EQ(p.v_resample_interval, 10);
+  EXPECT_TRUE(p.optical_flow);
+  EXPECT_TRUE(p.prototype_priors.empty());
 }
 
 TEST(Params, OutOfRangeValuesNameTheParameter)
@@ -183,6 +185,39 @@ TEST_F(ParamsYaml, RefusesAnUnknownFormNamingTheKey)
 {
   expectParameterError([&]() { amcr::loadParams(write("likelihood_form: \"gaussian_only\"\n")); }, "likelihood_form",
                        "likelihood_form: gaussian_only");
+}
+
+TEST_F(ParamsYaml, ReadsPrototypePriorsAsAMap)
+{
+  const amcr::Params p = amcr::loadParams(write("prototype_priors: { bat: 2.5, apple: 0 }\n"));
+  ASSERT_EQ(p.prototype_priors.size(), 2u);
+  EXPECT_DOUBLE_EQ(p.prototype_priors.at("bat"), 2.5);
+  EXPECT_DOUBLE_EQ(p.prototype_priors.at("apple"), 0.0);
+  EXPECT_TRUE(amcr::loadParams(write("prototype_priors: {}\n")).prototype_priors.empty());
+  expectParameterError([&]() { amcr::loadParams(write("prototype_priors: { bat: -1 }\n")); }, "bat",
+                       "negative weight");
+  expectParameterError([&]() { amcr::loadParams(write("prototype_priors: { bat: heavy }\n")); }, "bat",
+                       "weight that is not a number");
+}
+
+TEST(Priors, ParseAndFormatRoundTrip)
+{
+  const auto priors = amcr::parsePriors(" bat: 2, apple:0.5 ,bird : 0 ");
+  ASSERT_EQ(priors.size(), 3u);
+  EXPECT_DOUBLE_EQ(priors.at("bat"), 2.0);
+  EXPECT_DOUBLE_EQ(priors.at("apple"), 0.5);
+  EXPECT_DOUBLE_EQ(priors.at("bird"), 0.0);
+  EXPECT_EQ(amcr::parsePriors(amcr::formatPriors(priors)), priors);
+  EXPECT_TRUE(amcr::parsePriors("").empty());
+  amcr::Params p;
+  amcr::setParameter(p, "prototype_priors", std::string("bat: 3"));
+  EXPECT_DOUBLE_EQ(p.prototype_priors.at("bat"), 3.0);
+}
+
+TEST(Priors, MalformedEntriesNameTheParameterAndTheEntry)
+{
+  for (const std::string bad : {"bat", "bat: ", ": 2", "bat: 2x", "bat: -0.5", "bat: nan"})
+    expectParameterError([&]() { amcr::parsePriors(bad); }, "prototype_priors", "'" + bad + "'");
 }
 
 TEST_F(ParamsYaml, MissingFileIsAnError)

@@ -40,12 +40,7 @@ const std::vector<ShapeId> kMemory = {ShapeId::kArrow, ShapeId::kCrescent, Shape
 // Built once: the memory is immutable and its tables take a while to build.
 std::shared_ptr<const amcr::PrototypeMemory> memory()
 {
-  static const std::shared_ptr<const amcr::PrototypeMemory> m = [] {
-    auto built = std::make_shared<amcr::PrototypeMemory>();
-    for (ShapeId id : kMemory)
-      built->add(amcr_test::shapeName(id), amcr_test::drawPrototype(id), amcr::Params());
-    return built;
-  }();
+  static const std::shared_ptr<const amcr::PrototypeMemory> m = amcr_test::drawnMemory(kMemory);
   return m;
 }
 

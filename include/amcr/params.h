@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,8 @@ struct Params
   double reflection_jitter = 0.3;        ///< random turn added at a reflection, rad [0, 3.15]
 
   // Resampling (paper 3.6).
-  int v_resample_interval = 10;     ///< w: V-particles are resampled every w iterations [1, 1000]; paper 10
-  double v_reseed_fraction = 0.2;   ///< share of V-particles re-seeded at V-resampling [0, 1]
+  int v_resample_interval = 3;      ///< w: V-particles are resampled every w iterations [1, 1000]; paper 10
+  double v_reseed_fraction = 0.5;   ///< share of V-particles re-seeded at V-resampling [0, 1]
   double m_reseed_fraction = 0.02;  ///< share of M-particles re-seeded uniformly per iteration [0, 1]
   double injection_fraction = 0.1;  ///< share of M-particles placed at leading hypotheses [0, 1]
   int seed_enclosure_rays = 6;      ///< a new V-particle wants this many of 8 rays to hit an edge [0, 8]
@@ -68,6 +69,18 @@ struct Params
   int refine_iterations = 5;          ///< outline-to-edge refinement passes of the affine [0, 100]
   double refine_search = 6.0;         ///< search along the outline normal for an edge, input px [0, 100]
   double decision_threshold = 0.75;   ///< smallest score reported [0, 1]
+
+  // Tracking (spec "Tracking") and the time per frame.
+  bool optical_flow = true;        ///< V-particles ride pyramidal Lucas-Kanade flow between frames
+  int flow_window = 21;            ///< side of the Lucas-Kanade window, px [5, 101]
+  int flow_levels = 3;             ///< pyramid levels above the frame [0, 8]
+  double flow_max_error = 40.0;    ///< a flow whose mean grey-level difference over the window exceeds this fails [1, 255]
+  double frame_budget_ms = 0.0;    ///< time cap per frame, ms; 0 = a full iteration every frame [0, 10000]
+
+  /// Context prior over the memory (paper 3.6, "context"): label -> weight
+  /// of the prototype in the initial and re-seeded M-particles. Labels not
+  /// listed weigh 1; weight 0 removes a prototype from the filter.
+  std::map<std::string, double> prototype_priors;
 
   std::uint64_t seed = 0;  ///< seed of the recognizer's random generator
 
@@ -93,9 +106,15 @@ const std::vector<ParameterInfo>& parameterTable();
 Params loadParams(const std::string& yaml_path, Params params = Params());
 
 /// Sets one parameter by name from a number, or (likelihood_form,
-/// deviation_space) from a string. Throws ParameterError for an unknown name.
+/// deviation_space, prototype_priors) from a string. Throws ParameterError for an unknown name.
 void setParameter(Params& params, const std::string& name, double value);
 void setParameter(Params& params, const std::string& name, const std::string& value);
+
+/// Parses prototype priors written as "label: weight, label: weight"
+/// (ParameterError for a malformed entry or a negative weight).
+std::map<std::string, double> parsePriors(const std::string& text);
+/// The inverse of parsePriors, labels in order.
+std::string formatPriors(const std::map<std::string, double>& priors);
 
 /// Reads one numeric parameter by name.
 double getParameter(const Params& params, const std::string& name);

@@ -52,5 +52,7 @@ struct MParticleSet
   void copy(std::size_t from, std::size_t to);
   /// Copies particle `from` of `source` onto `to` of this set.
   void copyFrom(const MParticleSet& source, std::size_t from, std::size_t to);
+  /// Copies particles [begin, end) of `source` onto the same indices here.
+  void copyRange(const MParticleSet& source, std::size_t begin, std::size_t end);
 };
 }  // namespace amcr

@@ -26,6 +26,7 @@ struct RecognizedObject
   /// fit, in [0, 1].
   double score = 0.0;
   int support = 0;  ///< V-particles that agree on this object
+  std::vector<int> v_particles;  ///< their indices (Recognizer::vParticles()), one per correspondence
   Affine image_to_prototype;  ///< input px -> original prototype px
   Affine prototype_to_image;  ///< original prototype px -> input px
   std::vector<Correspondence> correspondences;
@@ -34,8 +35,10 @@ struct RecognizedObject
 
 struct RecognitionResult
 {
-  long iteration = 0;         ///< iterations run since the last reset
+  long iteration = 0;         ///< complete iterations since the last reset
+  double iterations = 0.0;    ///< share of an iteration run in this step (below 1 under a frame budget)
   double time_ms = 0.0;       ///< processing time of this step
+  int flow_failures = 0;      ///< V-particles re-seeded because their optical flow failed
   int converged_v_particles = 0;  ///< V-particles with a focused M-cluster
   std::vector<RecognizedObject> objects;  ///< only objects at or above the decision threshold
 };

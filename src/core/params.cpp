@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <iomanip>
 #include <sstream>
 
 #include <opencv2/core.hpp>
@@ -65,6 +66,11 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_INT(refine_iterations, "", 0, 100, "outline-to-edge refinement passes of the affine"),
       AMCR_DOUBLE(refine_search, "px", 0, 100, "search along the outline normal for an edge"),
       AMCR_DOUBLE(decision_threshold, "", 0, 1, "smallest score reported"),
+      AMCR_INT(optical_flow, "", 0, 1, "1: V-particles ride the pyramidal Lucas-Kanade flow between frames"),
+      AMCR_INT(flow_window, "px", 5, 101, "side of the Lucas-Kanade window"),
+      AMCR_INT(flow_levels, "", 0, 8, "pyramid levels of the optical flow above the frame"),
+      AMCR_DOUBLE(flow_max_error, "grey levels", 1, 255, "mean grey-level difference over the window above which a flow fails"),
+      AMCR_DOUBLE(frame_budget_ms, "ms", 0, 10000, "time cap per frame; an iteration spans frames when it does not fit; 0 = none"),
       AMCR_INT(seed, "", 0, 9.007199254740992e15, "seed of the random generator"),
   };
   return table;
@@ -157,9 +163,58 @@ void setParameter(Params& params, const std::string& name, const std::string& va
       throw ParameterError("parameter 'deviation_space' = '" + value + "' must be 'image' or 'prototype'");
     return;
   }
+  if (name == "prototype_priors")
+  {
+    params.prototype_priors = parsePriors(value);
+    return;
+  }
   if (findNumeric(name))
     throw ParameterError("parameter '" + name + "' takes a number, not '" + value + "'");
   throw ParameterError("unknown parameter '" + name + "'");
+}
+
+std::map<std::string, double> parsePriors(const std::string& text)
+{
+  std::map<std::string, double> priors;
+  std::stringstream entries(text);
+  std::string entry;
+  while (std::getline(entries, entry, ','))
+  {
+    const auto trim = [](std::string s) {
+      const auto first = s.find_first_not_of(" \t\n");
+      const auto last = s.find_last_not_of(" \t\n");
+      return first == std::string::npos ? std::string() : s.substr(first, last - first + 1);
+    };
+    if (trim(entry).empty())
+      continue;
+    const auto colon = entry.rfind(':');
+    const std::string label = colon == std::string::npos ? "" : trim(entry.substr(0, colon));
+    const std::string number = colon == std::string::npos ? "" : trim(entry.substr(colon + 1));
+    std::size_t used = 0;
+    double weight = -1.0;
+    try
+    {
+      weight = std::stod(number, &used);
+    }
+    catch (const std::exception&)
+    {
+      used = 0;
+    }
+    if (label.empty() || used == 0 || used != number.size())
+      throw ParameterError("parameter 'prototype_priors': '" + trim(entry) + "' is not 'label: weight'");
+    if (!std::isfinite(weight) || weight < 0.0)
+      throw ParameterError("parameter 'prototype_priors': the weight of '" + label + "' must be a finite number >= 0");
+    priors[label] = weight;
+  }
+  return priors;
+}
+
+std::string formatPriors(const std::map<std::string, double>& priors)
+{
+  std::ostringstream out;
+  for (auto it = priors.begin(); it != priors.end(); ++it)
+    out << (it == priors.begin() ? "" : ", ") << it->first << ": " << it->second;
+  return out.str();
 }
 
 double getParameter(const Params& params, const std::string& name)
@@ -190,12 +245,23 @@ Params loadParams(const std::string& yaml_path, Params params)
     const std::string name = node.name();
     try
     {
-      if (node.isString())
+      if (name == "prototype_priors" && node.isMap())
+      {
+        std::ostringstream text;
+        for (const cv::FileNode& prior : node)
+        {
+          if (!prior.isInt() && !prior.isReal())
+            throw ParameterError("parameter 'prototype_priors': the weight of '" + prior.name() + "' must be a number");
+          text << prior.name() << ": " << std::setprecision(17) << static_cast<double>(prior) << ",";
+        }
+        params.prototype_priors = parsePriors(text.str());
+      }
+      else if (node.isString())
         setParameter(params, name, static_cast<std::string>(node));
       else if (node.isInt() || node.isReal())
         setParameter(params, name, static_cast<double>(node));
       else
-        throw ParameterError("parameter '" + name + "' must be a number or a word");
+        throw ParameterError("parameter '" + name + "' must be a number or a word (prototype_priors: a map)");
     }
     catch (const ParameterError& e)
     {

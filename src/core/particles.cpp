@@ -1,5 +1,7 @@
 #include "amcr/particles.h"
 
+#include <algorithm>
+
 namespace amcr
 {
 int RaySignature::valid_rays() const
@@ -34,5 +36,19 @@ void MParticleSet::copyFrom(const MParticleSet& source, std::size_t from, std::s
     affine[k][to] = source.affine[k][from];
   affine_valid[to] = source.affine_valid[from];
   log_likelihood[to] = source.log_likelihood[from];
+}
+void MParticleSet::copyRange(const MParticleSet& source, std::size_t begin, std::size_t end)
+{
+  const auto range = [&](const auto& from, auto& to) {
+    std::copy(from.begin() + begin, from.begin() + end, to.begin() + begin);
+  };
+  range(source.x, x);
+  range(source.y, y);
+  range(source.theta, theta);
+  range(source.prototype, prototype);
+  for (int k = 0; k < 6; ++k)
+    range(source.affine[k], affine[k]);
+  range(source.affine_valid, affine_valid);
+  range(source.log_likelihood, log_likelihood);
 }
 }  // namespace amcr

@@ -15,6 +15,7 @@ namespace amcr
 namespace
 {
 constexpr int kMaxCopiesPerV = 3;         // copies one V-particle may get at a V-resampling
+constexpr int kVParticlesPerObject = 12;  // V-particles a recognized object keeps at full V-weight
 constexpr float kMinSeedRayLength = 4.f;  // px: shorter rays at a seed place mean texture, not a region
 
 /// cos and sin of every direction bin.
@@ -44,6 +45,7 @@ Recognizer::Recognizer(const Params& params, std::shared_ptr<const PrototypeMemo
   , observation_(params)
   , motion_(params)
   , rng_(params.seed)
+  , flow_(params.flow_window, params.flow_levels, params.flow_max_error)
 {
   setMemory(std::move(memory));
 }
@@ -60,7 +62,74 @@ void Recognizer::setMemory(std::shared_ptr<const PrototypeMemory> memory)
   if (!memory || memory->empty())
     throw MemoryError("the recognizer needs a prototype memory with at least one prototype");
   memory_ = std::move(memory);
+  buildPriorSlots();
   reset();
+}
+
+void Recognizer::buildPriorSlots()
+{
+  const std::size_t count = memory_->size();
+  std::vector<double> weight(count, 1.0);
+  for (const auto& prior : params_.prototype_priors)
+  {
+    bool found = false;
+    for (std::size_t p = 0; p < count; ++p)
+      if ((*memory_)[p].label() == prior.first)
+      {
+        weight[p] = prior.second;
+        found = true;
+      }
+    if (!found)
+      throw ParameterError("prototype_priors names '" + prior.first + "', which is not a label of the memory");
+  }
+  active_.clear();
+  double total = 0.0;
+  for (std::size_t p = 0; p < count; ++p)
+    if (weight[p] > 0.0)
+    {
+      active_.push_back(static_cast<int>(p));
+      total += weight[p];
+    }
+  if (active_.empty())
+    throw ParameterError("prototype_priors gives every prototype of the memory weight 0");
+
+  // m_particles_per_prototype per active prototype, shared in proportion to
+  // the weights (largest remainder, so the shares add up exactly).
+  const int slots = params_.m_particles_per_prototype * static_cast<int>(active_.size());
+  std::vector<int> share(active_.size());
+  std::vector<std::pair<double, int>> remainder;
+  int given = 0;
+  for (std::size_t a = 0; a < active_.size(); ++a)
+  {
+    const double exact = slots * weight[active_[a]] / total;
+    share[a] = static_cast<int>(std::floor(exact));
+    given += share[a];
+    remainder.emplace_back(exact - share[a], static_cast<int>(a));
+  }
+  std::stable_sort(remainder.begin(), remainder.end(), [](const auto& l, const auto& r) { return l.first > r.first; });
+  for (int k = 0; given < slots; ++k, ++given)
+    ++share[remainder[k % remainder.size()].second];
+  slot_prototype_.clear();
+  for (std::size_t a = 0; a < active_.size(); ++a)
+    slot_prototype_.insert(slot_prototype_.end(), share[a], active_[a]);
+
+  prior_cdf_.clear();
+  const bool uniform = std::all_of(active_.begin(), active_.end(), [&](int p) { return weight[p] == weight[active_[0]]; });
+  if (!uniform)
+  {
+    double sum = 0.0;
+    for (int p : active_)
+      prior_cdf_.push_back(sum += weight[p] / total);
+  }
+}
+
+int Recognizer::drawPrototype()
+{
+  if (prior_cdf_.empty())
+    return active_[rng_.index(active_.size())];
+  const double u = rng_.uniform();
+  const auto it = std::upper_bound(prior_cdf_.begin(), prior_cdf_.end(), u);
+  return active_[std::min<std::size_t>(it - prior_cdf_.begin(), active_.size() - 1)];
 }
 
 void Recognizer::reset()
@@ -71,37 +140,72 @@ void Recognizer::reset()
   m_scratch_ = MParticleSet();
   clusters_.clear();
   leading_.clear();
-  previous_.clear();
-  tracks_.reset();
+  tracks_.clear();
+  flow_.reset();
+  flow_origins_.clear();
   image_size_ = cv::Size();
   iteration_ = 0;
+  next_v_ = 0;
 }
 
 RecognitionResult Recognizer::step(const cv::Mat& image)
 {
-  const auto start = std::chrono::steady_clock::now();
-  cv::Mat scan_image = prepareScanImage(image, params_.blur_sigma);  // throws InputError before any state changes
-  scan_image_ = scan_image;
+  using Clock = std::chrono::steady_clock;
+  const auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+  const auto start = Clock::now();
+  const cv::Mat grey = toGray8(image);  // throws InputError before any state changes
+  scan_image_ = prepareScanImage(grey, params_.blur_sigma);
   const RadialScanner scanner(scan_image_, params_.edge_threshold, params_.max_ray_length);
-  if (v_.empty() || scan_image_.size() != image_size_)
-    seedAll(scanner);
-
-  // Paper 3.6: move every V-particle, predict and weight its M-particles, resample them.
-  ++iteration_;
-  for (int i = 0; i < static_cast<int>(v_.size()); ++i)
-    updateV(i, scanner);
-  std::swap(m_, m_scratch_);
-
   RecognitionResult result;
+  const bool fresh = v_.empty() || scan_image_.size() != image_size_;
+  if (fresh)
+    seedAll(scanner);
+  flow_origins_.clear();
+  if (params_.optical_flow)
+  {
+    flow_.push(grey);
+    if (!fresh && flow_.ready())
+      result.flow_failures = followFlow(scanner);
+  }
+
+  // Paper 3.6: move every V-particle, predict and weight its M-particles,
+  // resample them. Under a frame budget a round over the V-particles spans
+  // frames (the paper splits an iteration over two); a step never goes past
+  // the end of a round, and updates at least one V-particle.
+  const int n = static_cast<int>(v_.size());
+  const double budget = params_.frame_budget_ms;
+  int updated = 0;
+  bool round_done = false;
+  const auto updates_start = Clock::now();
+  while (!round_done)
+  {
+    if (budget > 0.0 && updated > 0 && since(start) + v_update_ms_ + extraction_ms_ > budget)
+      break;
+    updateV(next_v_, scanner);
+    ++updated;
+    if (++next_v_ == n)
+    {
+      next_v_ = 0;
+      ++iteration_;
+      round_done = true;
+    }
+  }
+  if (budget > 0.0)
+    v_update_ms_ = since(updates_start) / updated;
+  result.iterations = static_cast<double>(updated) / n;
+
+  const auto extraction_start = Clock::now();
   result.objects = extractObjects(scanner);
   for (const auto& c : clusters_)
     result.converged_v_particles += c.share >= params_.cluster_min_share ? 1 : 0;
-  if (iteration_ % params_.v_resample_interval == 0)
-    resampleV(scanner);
-
+  if (round_done && iteration_ % params_.v_resample_interval == 0)
+    resampleV(scanner, result.objects);
   tracks_.assign(result.objects);
+  if (budget > 0.0)
+    extraction_ms_ = since(extraction_start);
+
   result.iteration = iteration_;
-  result.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.time_ms = since(start);
   return result;
 }
 
@@ -130,7 +234,7 @@ void Recognizer::moveVParticles(const std::vector<cv::Point2f>& displacement)
 void Recognizer::seedAll(const RadialScanner& scanner)
 {
   image_size_ = scanner.image().size();
-  per_v_ = params_.m_particles_per_prototype * static_cast<int>(memory_->size());
+  per_v_ = static_cast<int>(slot_prototype_.size());
   v_.assign(params_.num_v_particles, VParticle());
   m_.resize(v_.size() * per_v_);
   m_scratch_.resize(m_.size());
@@ -141,7 +245,8 @@ void Recognizer::seedAll(const RadialScanner& scanner)
   }
   clusters_.clear();
   leading_.clear();
-  previous_.clear();
+  tracks_.clear();
+  next_v_ = 0;
 }
 
 // Spec "Where V-particles start matters": prefer places enclosed by edges
@@ -179,10 +284,8 @@ void Recognizer::seedV(VParticle& v, const RadialScanner& scanner)
 
 void Recognizer::seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const RaySignature& rays)
 {
-  const std::size_t count = end - begin;
-  const std::size_t prototypes = memory_->size();
-  for (std::size_t j = 0; j < count; ++j)
-    seedM(set, begin + j, static_cast<int>(j * prototypes / count), rays);
+  for (std::size_t j = 0; j < end - begin; ++j)
+    seedM(set, begin + j, slot_prototype_[j], rays);
 }
 
 // A uniform position inside the prototype; the heading from the proposal
@@ -426,19 +529,31 @@ void Recognizer::resampleM(int v_index)
     m_scratch_.log_likelihood[begin + k] = worst;
   }
   for (int j = 0; j < n_reseed; ++j, ++k)
-    seedM(m_scratch_, begin + k, static_cast<int>(rng_.index(memory_->size())), v.rays);
+    seedM(m_scratch_, begin + k, drawPrototype(), v.rays);
+  m_.copyRange(m_scratch_, begin, begin + per_v_);
 }
 
 // ---------------------------------------------------------------------------
 // V-resampling (paper 3.6, every w iterations; attention feedback, paper 4.3)
 
-void Recognizer::resampleV(const RadialScanner& scanner)
+void Recognizer::resampleV(const RadialScanner& scanner, const std::vector<RecognizedObject>& objects)
 {
   const int n = static_cast<int>(v_.size());
   std::vector<double> log_weights(n);
   for (int i = 0; i < n; ++i)
     log_weights[i] = v_[i].evidence_count > 0 ? v_[i].log_evidence_sum / v_[i].evidence_count
                                               : -std::numeric_limits<double>::infinity();
+  // Attention is shared between objects: the V-particles of an object
+  // beyond kVParticlesPerObject share its weight, so that a recognized
+  // object does not draw every V-particle away from the others and from
+  // the unexplored rest of the image.
+  for (const RecognizedObject& object : objects)
+  {
+    const double crowding = static_cast<double>(object.v_particles.size()) / kVParticlesPerObject;
+    if (crowding > 1.0)
+      for (int i : object.v_particles)
+        log_weights[i] -= std::log(crowding);
+  }
   const int n_reseed = std::min(n, static_cast<int>(std::lround(params_.v_reseed_fraction * n)));
   const int n_draw = n - n_reseed;
   const std::vector<int> picks = systematicResampleLog(log_weights, n_draw, rng_);

@@ -14,7 +14,7 @@ namespace
 constexpr double kVerifyTolerance = 2.0;           // px along the normal within which an outline point finds its edge
 constexpr int kMaxLeadingHypotheses = 3;           // hypotheses whose poses are injected as M-particles
 constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
-constexpr double kKeepTrackRatio = 0.8;            // a tracked object stays at this share of the decision threshold
+constexpr double kKeepTrackRatio = 0.65;           // a tracked object stays at this share of the decision threshold
 constexpr double kTrackDistance = 40.0;            // px an object's centre may move between frames and keep its track
 constexpr double kVerificationGain = 4.0;          // log-weight per unit of outline score above 0.5 (V-resampling)
 
@@ -79,6 +79,7 @@ bool Recognizer::describeObject(int prototype, const Affine& table_to_image, con
     if (std::hypot(predicted.x - image_point.x, predicted.y - image_point.y) > params_.group_tolerance)
       continue;
     object.correspondences.push_back({image_point, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean))});
+    object.v_particles.push_back(c.v);
   }
   object.support = static_cast<int>(object.correspondences.size());
   for (const auto& o : p.outline())
@@ -122,7 +123,7 @@ std::vector<RecognizedObject> Recognizer::extractObjects(const RadialScanner& sc
 
   // Starting points of the fit: each group's affine, and each object of the
   // previous frame (recognition and tracking run together: a pose, once
-  // fitted, is refined on, not found again). A group near a previous object
+  // fitted, is moved by the flow and refined on, not found again). A group near a previous object
   // of its prototype tries both and keeps the better fit.
   struct Start
   {
@@ -130,26 +131,30 @@ std::vector<RecognizedObject> Recognizer::extractObjects(const RadialScanner& sc
     std::vector<Affine> affines;
   };
   std::vector<Start> starts;
-  std::vector<bool> previous_used(previous_.size(), false);
+  const std::vector<Track>& tracks = tracks_.tracks();
+  std::vector<Affine> track_affines;  // each track's table -> image affine, moved by the flow
+  for (const Track& t : tracks)
+    track_affines.push_back(composeAffine((*memory_)[t.prototype_id].tableToOriginal(), t.prototype_to_image));
+  std::vector<bool> track_used(tracks.size(), false);
   for (const auto& h : hypotheses)
   {
     Start start{h.prototype, {h.table_to_image}};
     const cv::Point2d centre = applyAffine(h.table_to_image, (*memory_)[h.prototype].centre());
-    for (std::size_t k = 0; k < previous_.size(); ++k)
+    for (std::size_t k = 0; k < tracks.size(); ++k)
     {
-      const cv::Point2d previous_centre = applyAffine(previous_[k].table_to_image, (*memory_)[h.prototype].centre());
-      if (previous_[k].prototype == h.prototype &&
-          std::hypot(centre.x - previous_centre.x, centre.y - previous_centre.y) <= kTrackDistance)
+      const cv::Point2d track_centre = applyAffine(track_affines[k], (*memory_)[h.prototype].centre());
+      if (tracks[k].prototype_id == h.prototype &&
+          std::hypot(centre.x - track_centre.x, centre.y - track_centre.y) <= kTrackDistance)
       {
-        start.affines.push_back(previous_[k].table_to_image);
-        previous_used[k] = true;
+        start.affines.push_back(track_affines[k]);
+        track_used[k] = true;
       }
     }
     starts.push_back(std::move(start));
   }
-  for (std::size_t k = 0; k < previous_.size(); ++k)
-    if (!previous_used[k])
-      starts.push_back({previous_[k].prototype, {previous_[k].table_to_image}});
+  for (std::size_t k = 0; k < tracks.size(); ++k)
+    if (!track_used[k])
+      starts.push_back({tracks[k].prototype_id, {track_affines[k]}});
 
   std::vector<RecognizedObject> candidates;
   for (const auto& start : starts)
@@ -187,13 +192,13 @@ std::vector<RecognizedObject> Recognizer::extractObjects(const RadialScanner& sc
   // Report what passes the decision threshold; of two overlapping objects the better one.
   std::vector<RecognizedObject> objects;
   std::vector<cv::Rect2d> boxes;
-  previous_.clear();
   for (auto& c : candidates)
   {
     // Hysteresis: an object recognized in the previous frame stays while its
-    // score keeps above a share of the threshold.
-    const double threshold = params_.decision_threshold * (tracks_.continues(c) ? kKeepTrackRatio : 1.0);
-    if (c.score < threshold || c.support < params_.min_support)
+    // score keeps above a share of the threshold and one V-particle supports it.
+    const bool tracked = tracks_.continues(c);
+    const double threshold = params_.decision_threshold * (tracked ? kKeepTrackRatio : 1.0);
+    if (c.score < threshold || c.support < (tracked ? 1 : params_.min_support))
       continue;
     const cv::Rect2d box = boundsOf(c.outline);
     bool suppressed = false;
@@ -202,8 +207,6 @@ std::vector<RecognizedObject> Recognizer::extractObjects(const RadialScanner& sc
     if (suppressed)
       continue;
     boxes.push_back(box);
-    const Prototype& p = (*memory_)[c.prototype_id];
-    previous_.push_back({c.prototype_id, composeAffine(p.tableToOriginal(), c.prototype_to_image)});
     objects.push_back(std::move(c));
   }
   return objects;

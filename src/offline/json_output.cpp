@@ -171,6 +171,7 @@ std::string frameJson(long frame, double time_ms, const RecognitionResult& resul
   std::string out = "{\"frame\": " + std::to_string(frame);
   out += ", \"time_ms\": " + jsonNumber(time_ms, kTimeDecimals);
   out += ", \"iteration\": " + std::to_string(result.iteration);
+  out += ", \"iterations\": " + jsonNumber(result.iterations, kShareDecimals);
   out += ", \"objects\": [";
   for (std::size_t i = 0; i < result.objects.size(); ++i)
   {
@@ -185,7 +186,7 @@ std::string frameJson(long frame, double time_ms, const RecognitionResult& resul
 std::string skippedFrameJson(long frame, long iteration, const std::string& reason)
 {
   return "{\"frame\": " + std::to_string(frame) + ", \"time_ms\": " + jsonNumber(0.0, kTimeDecimals) +
-         ", \"iteration\": " + std::to_string(iteration) + ", \"objects\": [], \"skipped\": " + jsonString(reason) +
+         ", \"iteration\": " + std::to_string(iteration) + ", \"iterations\": 0, \"objects\": [], \"skipped\": " + jsonString(reason) +
          "}";
 }
 

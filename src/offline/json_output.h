@@ -21,6 +21,7 @@ constexpr int kTimeDecimals = 3;    ///< time_ms
 constexpr int kScoreDecimals = 4;   ///< score in [0, 1]
 constexpr int kAffineDecimals = 6;  ///< affine matrix entries
 constexpr int kPixelDecimals = 2;   ///< correspondence coordinates, px
+constexpr int kShareDecimals = 3;   ///< iterations (share of an iteration run on a frame)
 
 /// A quoted JSON string. Escapes '"', '\\' and control characters (as \n,
 /// \t, ... or \u00XX); valid UTF-8 passes through, each byte of an invalid

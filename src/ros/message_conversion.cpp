@@ -55,6 +55,7 @@ amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::
   amcr::Recognitions msg;
   msg.header = header;
   msg.iteration = result.iteration;
+  msg.iterations = result.iterations;
   msg.processing_ms = result.time_ms;
   std::vector<const amcr::RecognizedObject*> sorted;
   for (const amcr::RecognizedObject& o : result.objects)

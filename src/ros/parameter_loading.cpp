@@ -1,6 +1,7 @@
 #include "parameter_loading.h"
 
 #include <filesystem>
+#include <map>
 #include <system_error>
 
 #include <opencv2/core.hpp>
@@ -36,10 +37,13 @@ amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::stri
       continue;
     double value = 0.0;
     int int_value = 0;
+    bool bool_value = false;
     if (private_nh.getParam(info.name, value))
       ;
     else if (private_nh.getParam(info.name, int_value))
       value = int_value;
+    else if (private_nh.getParam(info.name, bool_value))
+      value = bool_value ? 1.0 : 0.0;
     else
       throw amcr::ParameterError("~" + info.name + " must be a number (" + info.unit + ", [" +
                                  std::to_string(info.min) + ", " + std::to_string(info.max) + "])");
@@ -57,6 +61,19 @@ amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::stri
     amcr::setParameter(params, name, value);
     if (notes)
       notes->push_back(std::string(name) + " = " + value);
+  }
+  // ~prototype_priors: a map {label: weight} or the string "label: weight, ...".
+  if (private_nh.hasParam("prototype_priors"))
+  {
+    std::map<std::string, double> priors;
+    std::string text;
+    if (private_nh.getParam("prototype_priors", priors))
+      text = amcr::formatPriors(priors);
+    else if (!private_nh.getParam("prototype_priors", text))
+      throw amcr::ParameterError("~prototype_priors must be a map {label: weight} or a string 'label: weight, ...'");
+    amcr::setParameter(params, "prototype_priors", text);
+    if (notes)
+      notes->push_back("prototype_priors = " + amcr::formatPriors(params.prototype_priors));
   }
   params.validate();
   return params;

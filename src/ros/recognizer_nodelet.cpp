@@ -367,7 +367,8 @@ void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
     out.processing_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     fillPoses(out);
     pub_recognitions_.publish(out);
-    stats_.processed(out, result.converged_v_particles, params_.num_v_particles);
+    stats_.processed(out, {result.converged_v_particles, params_.num_v_particles, result.flow_failures,
+                           params_.frame_budget_ms});
 
     if (pub_overlay_.getNumSubscribers() > 0)
     {

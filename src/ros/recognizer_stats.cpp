@@ -25,15 +25,18 @@ void RecognizerStats::skipped()
   ++skipped_;
 }
 
-void RecognizerStats::processed(const amcr::Recognitions& out, int converged_v_particles, int num_v_particles)
+void RecognizerStats::processed(const amcr::Recognitions& out, const FilterState& state)
 {
   std::lock_guard<std::mutex> lock(mutex_);
   ++processed_;
   last_ms_ = out.processing_ms;
   mean_ms_ = processed_ == 1 ? out.processing_ms : 0.9 * mean_ms_ + 0.1 * out.processing_ms;
   iteration_ = out.iteration;
-  converged_ = converged_v_particles;
-  num_v_ = num_v_particles;
+  iterations_mean_ = processed_ == 1 ? out.iterations : 0.9 * iterations_mean_ + 0.1 * out.iterations;
+  converged_ = state.converged_v_particles;
+  num_v_ = state.num_v_particles;
+  flow_failures_ += state.flow_failures;
+  budget_ms_ = state.budget_ms;
   leading_.clear();
   for (const auto& o : out.objects)
   {
@@ -99,6 +102,10 @@ void RecognizerStats::report(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("processing time, last (ms)", last_ms_);
   status.add("processing time, mean (ms)", mean_ms_);
   status.add("iteration", iteration_);
+  status.add("iterations per frame, mean", iterations_mean_);
+  status.add("frame budget (ms)", budget_ms_ > 0.0 ? std::to_string(budget_ms_) : std::string("none"));
+  status.add("frame budget used, mean (%)", budget_ms_ > 0.0 ? 100.0 * mean_ms_ / budget_ms_ : 0.0);
+  status.add("V-particles re-seeded by failed flows", flow_failures_);
   status.add("converged V-particles", std::to_string(converged_) + " of " + std::to_string(num_v_));
   status.add("leading hypotheses", leading_.empty() ? "none" : leading_);
 }

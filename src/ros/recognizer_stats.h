@@ -22,8 +22,15 @@ public:
   void received(std::uint32_t seq);
   /// An image was refused (bad input, no prototypes).
   void skipped();
-  /// An image was processed.
-  void processed(const amcr::Recognitions& out, int converged_v_particles, int num_v_particles);
+  /// An image was processed: its message, and the filter's state.
+  struct FilterState
+  {
+    int converged_v_particles = 0;
+    int num_v_particles = 0;
+    int flow_failures = 0;     ///< V-particles re-seeded because their flow failed
+    double budget_ms = 0.0;    ///< ~frame_budget_ms, 0 = none
+  };
+  void processed(const amcr::Recognitions& out, const FilterState& state);
   void overlayDrawn();
   /// The filter was reset or rebuilt; the sequence starts again.
   void restarted();
@@ -43,6 +50,8 @@ private:
   double last_ms_ = 0.0, mean_ms_ = 0.0;
   long iteration_ = 0;
   int converged_ = 0, num_v_ = 0;
+  double iterations_mean_ = 0.0, budget_ms_ = 0.0;
+  long flow_failures_ = 0;
   std::string leading_;
   std::size_t prototypes_ = 0;
   std::string prototype_problem_;

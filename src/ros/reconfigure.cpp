@@ -10,7 +10,8 @@ namespace amcr_ros
   X(motion_noise_translation) X(motion_noise_rotation) X(reflection_jitter) X(v_resample_interval)             \
   X(v_reseed_fraction) X(m_reseed_fraction) X(injection_fraction) X(seed_enclosure_rays) X(seed_attempts)      \
   X(cluster_radius) X(cluster_min_share) X(group_tolerance) X(min_support) X(refine_iterations)                \
-  X(refine_search) X(decision_threshold) X(seed)
+  X(refine_search) X(decision_threshold) X(optical_flow) X(flow_window) X(flow_levels)        \
+  X(flow_max_error) X(frame_budget_ms) X(seed)
 
 amcr::AMCRConfig toConfig(const amcr::Params& params)
 {
@@ -20,6 +21,7 @@ amcr::AMCRConfig toConfig(const amcr::Params& params)
 #undef AMCR_TO_CONFIG
   config.likelihood_form = amcr::toString(params.likelihood_form);
   config.deviation_space = amcr::toString(params.deviation_space);
+  config.prototype_priors = amcr::formatPriors(params.prototype_priors);
   return config;
 }
 
@@ -30,6 +32,7 @@ amcr::Params fromConfig(const amcr::AMCRConfig& config, amcr::Params params)
 #undef AMCR_FROM_CONFIG
   amcr::setParameter(params, "likelihood_form", config.likelihood_form);
   amcr::setParameter(params, "deviation_space", config.deviation_space);
+  amcr::setParameter(params, "prototype_priors", config.prototype_priors);
   return params;
 }
 

@@ -21,12 +21,13 @@ TEST(ReconfigureTable, SameParametersRangesAndDefaultsAsTheCore)
   {
     c->likelihood_form = defaults.likelihood_form;
     c->deviation_space = defaults.deviation_space;
+    c->prototype_priors = defaults.prototype_priors;
   }
   std::set<std::string> cfg_names;
   for (const auto& d : descriptions)
     cfg_names.insert(d->name);
 
-  std::set<std::string> core_names = {"likelihood_form", "deviation_space"};
+  std::set<std::string> core_names = {"likelihood_form", "deviation_space", "prototype_priors"};
   const amcr::Params core_defaults;
   const amcr::Params cfg_defaults = amcr_ros::fromConfig(defaults, amcr::Params());
   const amcr::Params cfg_min = amcr_ros::fromConfig(min, amcr::Params());
@@ -53,11 +54,15 @@ TEST(ReconfigureTable, RoundTrip)
   p.likelihood_form = amcr::LikelihoodForm::kMixture;
   p.deviation_space = amcr::DeviationSpace::kPrototype;
   p.seed = 42;
+  p.optical_flow = false;
+  p.frame_budget_ms = 12.5;
+  p.prototype_priors = {{"bat", 2.0}, {"apple", 0.0}};
   const amcr::Params back = amcr_ros::fromConfig(amcr_ros::toConfig(p), amcr::Params());
   for (const amcr::ParameterInfo& info : amcr::parameterTable())
     EXPECT_DOUBLE_EQ(amcr::getParameter(back, info.name), amcr::getParameter(p, info.name)) << info.name;
   EXPECT_EQ(back.likelihood_form, p.likelihood_form);
   EXPECT_EQ(back.deviation_space, p.deviation_space);
+  EXPECT_EQ(back.prototype_priors, p.prototype_priors);
   EXPECT_TRUE(amcr_ros::tablesDiffer(p, [&] {
     amcr::Params q = p;
     q.prototype_size = 64;

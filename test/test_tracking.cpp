@@ -1,0 +1,320 @@
+// Recognition while tracking (issue 4), with inputs drawn in code: an object
+// moving over clutter (up to 5 px and 3 degrees per frame) followed by the
+// V-particles riding the optical flow; several objects at once with their
+// own affines and track ids; a frame budget that splits iterations over
+// frames; jumps in the sequence.
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "amcr/prototype_memory.h"
+#include "amcr/recognizer.h"
+#include "scene_drawing.h"
+
+namespace
+{
+using amcr_test::Placement;
+using amcr_test::ShapeId;
+
+constexpr double kCornerTolerance = 8.0;  // px, mean corner error of prototype_to_image while moving
+constexpr double kStaticTolerance = 6.0;  // px, the same for a static object (as the end-to-end test)
+constexpr double kMinHeldShare = 0.95;    // of the frames after the first correct decision
+
+std::shared_ptr<const amcr::PrototypeMemory> memory()
+{
+  static const auto m = amcr_test::drawnMemory({ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar});
+  return m;
+}
+
+amcr::Params params(bool flow)
+{
+  amcr::Params p;
+  p.seed = 1;
+  p.optical_flow = flow;
+  return p;
+}
+
+amcr_test::Clutter clutter(std::uint64_t seed)
+{
+  amcr_test::Clutter c;
+  c.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
+  c.seed = seed;
+  return c;
+}
+
+// The moving object: its centre on a Lissajous path (each axis at most
+// 3.5 px per frame, together at most 5) and a rotation of 2 to 3 degrees
+// per frame, under an anisotropic scale and a shear.
+amcr::Affine movingPose(int frame)
+{
+  const double t = 2.0 * M_PI * frame / 200.0;
+  const cv::Point2d centre(320.0 + 110.0 * std::sin(t), 240.0 + 55.0 * std::sin(2.0 * t));
+  const double degrees = 20.0 + 2.5 * frame + 0.5 * 200.0 / (2.0 * M_PI) * (1.0 - std::cos(t));
+  return amcr_test::makeAffine(amcr_test::prototypeCentre(), centre, degrees * M_PI / 180.0, 0.6, 0.52, 0.15);
+}
+
+struct TrackingRun
+{
+  int frames = 0;
+  int first_correct = -1;  // 0-based frame of the first correct report
+  int held = 0;            // frames from first_correct on with a correct report
+  int wrong_label = 0;     // frames from first_correct on with a report of another label
+  int reseeded = 0;        // V-particles re-seeded by failed flows
+  std::set<int> track_ids;  // of the correct reports
+  std::vector<double> errors;  // corner errors of the correct label's reports
+
+  int since() const { return first_correct >= 0 ? frames - first_correct : 0; }
+  std::string summary() const
+  {
+    std::vector<double> sorted = errors;
+    std::sort(sorted.begin(), sorted.end());
+    std::ostringstream out;
+    out << "first correct at frame " << first_correct << ", held in " << held << " of " << since()
+        << " frames since, another label in " << wrong_label << ", median corner error "
+        << (sorted.empty() ? -1.0 : sorted[sorted.size() / 2]) << " px, " << track_ids.size() << " track id(s), "
+        << reseeded << " V-particles re-seeded by failed flows";
+    return out.str();
+  }
+};
+
+TrackingRun runMoving(bool flow, const std::vector<cv::Mat>& frames)
+{
+  amcr::Recognizer recognizer(params(flow), memory());
+  TrackingRun run;
+  run.frames = static_cast<int>(frames.size());
+  for (int k = 0; k < run.frames; ++k)
+  {
+    const amcr::RecognitionResult result = recognizer.step(frames[k]);
+    run.reseeded += result.flow_failures;
+    bool correct = false, wrong = false;
+    for (const amcr::RecognizedObject& o : result.objects)
+    {
+      if (o.label != "arrow")
+      {
+        wrong = true;
+        continue;
+      }
+      const double e = amcr_test::cornerError(o.prototype_to_image, movingPose(k));
+      run.errors.push_back(e);
+      if (e <= kCornerTolerance)
+      {
+        correct = true;
+        run.track_ids.insert(o.track_id);
+      }
+    }
+    if (correct && run.first_correct < 0)
+      run.first_correct = k;
+    if (run.first_correct >= 0)
+    {
+      run.held += correct;
+      run.wrong_label += wrong;
+    }
+  }
+  return run;
+}
+
+// The issue's moving sequence: 200 frames; after the first correct decision
+// the arrow must be reported with its label and within the corner tolerance
+// in at least 95 % of the frames. The same frames without the flow are run
+// beside it and printed (an ablation, not asserted).
+TEST(Tracking, FollowsAMovingObjectWithTheFlow)
+{
+  amcr_test::Scene scene;
+  scene.objects.push_back({ShapeId::kArrow, movingPose(0)});
+  scene.clutter = clutter(301);
+  const std::vector<cv::Mat> frames = amcr_test::renderMovingSequence(
+      scene, 200, [](int k) { return std::vector<Placement>{{ShapeId::kArrow, movingPose(k)}}; });
+
+  const TrackingRun with_flow = runMoving(true, frames);
+  const TrackingRun without_flow = runMoving(false, frames);
+  std::cout << "[ tracking ] with flow:    " << with_flow.summary() << std::endl;
+  std::cout << "[ tracking ] without flow: " << without_flow.summary() << std::endl;
+  RecordProperty("held_with_flow", with_flow.held);
+  RecordProperty("held_without_flow", without_flow.held);
+
+  ASSERT_GE(with_flow.first_correct, 0) << with_flow.summary();
+  EXPECT_GE(with_flow.held, kMinHeldShare * with_flow.since()) << with_flow.summary();
+  EXPECT_LE(with_flow.wrong_label, (1.0 - kMinHeldShare) * with_flow.since()) << with_flow.summary();
+}
+}  // namespace
+
+namespace
+{
+/// Steps `recognizer` over `frames`; returns the objects of each frame.
+std::vector<std::vector<amcr::RecognizedObject>> runStatic(amcr::Recognizer& recognizer,
+                                                           const std::vector<cv::Mat>& frames)
+{
+  std::vector<std::vector<amcr::RecognizedObject>> objects;
+  for (const cv::Mat& frame : frames)
+    objects.push_back(recognizer.step(frame).objects);
+  return objects;
+}
+
+/// The reported object of `label` within `tolerance` px of `truth`, or null.
+const amcr::RecognizedObject* find(const std::vector<amcr::RecognizedObject>& objects, const std::string& label,
+                                   const amcr::Affine& truth, double tolerance)
+{
+  for (const auto& o : objects)
+    if (o.label == label && amcr_test::cornerError(o.prototype_to_image, truth) <= tolerance)
+      return &o;
+  return nullptr;
+}
+
+/// Frames (of the last `window`) in which every placement is reported with
+/// its label within the static tolerance by an object of its own.
+int framesWithAll(const std::vector<std::vector<amcr::RecognizedObject>>& objects,
+                  const std::vector<Placement>& placements, std::size_t window, std::set<int>* track_ids = nullptr)
+{
+  int count = 0;
+  for (std::size_t k = objects.size() - std::min(window, objects.size()); k < objects.size(); ++k)
+  {
+    std::set<const amcr::RecognizedObject*> found;
+    for (const Placement& p : placements)
+      found.insert(find(objects[k], amcr_test::shapeName(p.shape), p.prototype_to_image, kStaticTolerance));
+    if (found.count(nullptr) == 0 && found.size() == placements.size())
+    {
+      ++count;
+      if (track_ids)
+        for (const auto* o : found)
+          track_ids->insert(o->track_id);
+    }
+  }
+  return count;
+}
+}  // namespace
+
+// Two different known shapes in one frame: both reported, each with its own
+// affine (within the static tolerance of its truth), in most of the last
+// 30 of 150 frames.
+TEST(SeveralObjects, TwoDifferentShapesEachWithItsOwnAffine)
+{
+  amcr_test::Scene scene;
+  scene.objects = {{ShapeId::kArrow, amcr_test::makeAffine(amcr_test::prototypeCentre(), {180, 230}, 0.5, 0.8, 0.7, 0.2)},
+                   {ShapeId::kStar, amcr_test::makeAffine(amcr_test::prototypeCentre(), {470, 250}, -0.8, 0.75, 0.85, -0.1)}};
+  scene.clutter = clutter(311);
+  scene.clutter.random_shapes = 4;
+  amcr::Recognizer recognizer(params(true), memory());
+  const auto objects = runStatic(recognizer, amcr_test::renderSequence(scene, 150));
+  const int both = framesWithAll(objects, scene.objects, 30);
+  std::cout << "[ several  ] arrow and star both reported in " << both << " of the last 30 frames" << std::endl;
+  EXPECT_GE(both, 25);
+}
+
+// Two copies of one shape (different poses): two objects with different
+// track ids, each with its own affine.
+TEST(SeveralObjects, TwoCopiesOfOneShapeAreTwoTracks)
+{
+  amcr_test::Scene scene;
+  scene.objects = {
+      {ShapeId::kCrescent, amcr_test::makeAffine(amcr_test::prototypeCentre(), {170, 240}, 0.3, 0.8, 0.8, 0.0)},
+      {ShapeId::kCrescent, amcr_test::makeAffine(amcr_test::prototypeCentre(), {460, 230}, 2.2, 0.75, 0.85, 0.2)}};
+  scene.clutter = clutter(312);
+  scene.clutter.random_shapes = 4;
+  amcr::Recognizer recognizer(params(true), memory());
+  const auto objects = runStatic(recognizer, amcr_test::renderSequence(scene, 150));
+  std::set<int> ids;
+  const int both = framesWithAll(objects, scene.objects, 30, &ids);
+  std::cout << "[ several  ] both crescents reported in " << both << " of the last 30 frames, track ids";
+  for (int id : ids)
+    std::cout << " " << id;
+  std::cout << std::endl;
+  EXPECT_GE(both, 25);
+  // Each frame's two objects carry different ids (framesWithAll found two
+  // distinct objects); over the window the ids stay those two.
+  EXPECT_EQ(ids.size(), 2u);
+}
+
+// A frame budget far below a full iteration splits the rounds over frames:
+// less than one iteration per frame on average, and the object of the
+// end-to-end test is still recognized, within more frames.
+TEST(FrameBudget, SplitIterationsStillRecognize)
+{
+  amcr_test::Scene scene;
+  const amcr::Affine truth = amcr_test::makeAffine(amcr_test::prototypeCentre(), {330, 250}, 0.6, 0.85, 0.75, 0.25);
+  scene.objects.push_back({ShapeId::kArrow, truth});
+  scene.clutter = clutter(101);
+  amcr::Params p = params(true);
+  amcr::Recognizer full(p, memory());
+  const cv::Mat probe = amcr_test::renderClean(scene);
+  full.step(probe);  // the first step also seeds
+  double full_ms = 0.0;
+  for (int k = 0; k < 5; ++k)
+    full_ms += full.step(probe).time_ms / 5.0;
+  p.frame_budget_ms = std::max(0.5, 0.4 * full_ms);  // under half of this machine's full iteration
+
+  amcr::Recognizer recognizer(p, memory());
+  const std::vector<cv::Mat> frames = amcr_test::renderSequence(scene, 400);
+  double iterations = 0.0;
+  int first = -1, held = 0;
+  for (int k = 0; k < static_cast<int>(frames.size()); ++k)
+  {
+    const amcr::RecognitionResult result = recognizer.step(frames[k]);
+    iterations += result.iterations;
+    EXPECT_GT(result.iterations, 0.0);
+    EXPECT_LE(result.iterations, 1.0);
+    const bool correct = find(result.objects, "arrow", truth, kStaticTolerance) != nullptr;
+    if (correct && first < 0)
+      first = k;
+    if (first >= 0)
+      held += correct;
+  }
+  const double per_frame = iterations / frames.size();
+  std::cout << "[ budget   ] budget " << p.frame_budget_ms << " ms (full iteration " << full_ms << " ms): "
+            << per_frame << " iterations per frame, first correct at frame " << first << ", held in " << held
+            << " of " << (first >= 0 ? static_cast<int>(frames.size()) - first : 0) << std::endl;
+  EXPECT_LT(per_frame, 0.9) << "the budget did not split the iterations";
+  EXPECT_EQ(recognizer.iteration(), static_cast<long>(std::floor(iterations + 1e-6)));
+  ASSERT_GE(first, 0) << "never recognized under the budget";
+  EXPECT_GE(held, 0.8 * (static_cast<int>(frames.size()) - first));
+}
+
+// Jumps: a different scene re-seeds the V-particles whose flow fails and the
+// new object is recognized; a change of resolution re-seeds everything.
+TEST(Jumps, ANewSceneAndANewResolutionReseedWithoutACrash)
+{
+  amcr_test::Scene first;
+  first.objects.push_back({ShapeId::kArrow, amcr_test::makeAffine(amcr_test::prototypeCentre(), {330, 250}, 0.6, 0.85, 0.75, 0.25)});
+  first.clutter = clutter(101);
+  amcr_test::Scene second;
+  const amcr::Affine star = amcr_test::makeAffine(amcr_test::prototypeCentre(), {290, 250}, -0.35, 0.95, 0.85, -0.2);
+  second.objects.push_back({ShapeId::kStar, star});
+  second.clutter = clutter(106);
+  amcr_test::Scene small;
+  const amcr::Affine small_star = amcr_test::makeAffine(amcr_test::prototypeCentre(), {160, 120}, 0.9, 0.6, 0.55, 0.1);
+  small.size = cv::Size(320, 240);
+  small.objects.push_back({ShapeId::kStar, small_star});
+  small.clutter = clutter(107);
+  small.clutter.random_shapes = 2;
+  small.clutter.lines = 4;
+
+  amcr::Recognizer recognizer(params(true), memory());
+  runStatic(recognizer, amcr_test::renderSequence(first, 30));
+  const std::vector<cv::Mat> second_frames = amcr_test::renderSequence(second, 120);
+  const amcr::RecognitionResult jump = recognizer.step(second_frames[0]);
+  EXPECT_GT(jump.flow_failures, 0) << "no V-particle noticed the jump";
+  const auto after_jump = runStatic(recognizer, second_frames);
+  int star_frames = 0;
+  for (const auto& objects : after_jump)
+    star_frames += find(objects, "star", star, kStaticTolerance) != nullptr;
+  EXPECT_GT(star_frames, 0) << "the star of the new scene was never recognized";
+
+  const auto after_resize = runStatic(recognizer, amcr_test::renderSequence(small, 120));
+  for (const amcr::VParticle& v : recognizer.vParticles())
+  {
+    EXPECT_LT(v.x, 320.f);
+    EXPECT_LT(v.y, 240.f);
+  }
+  int small_frames = 0;
+  for (const auto& objects : after_resize)
+    small_frames += find(objects, "star", small_star, kStaticTolerance) != nullptr;
+  std::cout << "[ jumps    ] new scene: " << jump.flow_failures << " V-particles re-seeded, star in " << star_frames
+            << " of 120 frames; at 320x240: star in " << small_frames << " of 120 frames" << std::endl;
+  EXPECT_GT(small_frames, 0) << "the star at the new resolution was never recognized";
+}
