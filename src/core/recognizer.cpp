@@ -15,7 +15,8 @@ namespace amcr
 namespace
 {
 constexpr int kMaxCopiesPerV = 3;         // copies one V-particle may get at a V-resampling
-constexpr int kVParticlesPerObject = 12;  // V-particles a recognized object keeps at full V-weight
+constexpr int kVParticlesPerObject = 12;
+constexpr double kEstimateDecay = 0.9;    // per frame, of the frame budget's running cost estimates  // V-particles a recognized object keeps at full V-weight
 constexpr float kMinSeedRayLength = 4.f;  // px: shorter rays at a seed place mean texture, not a region
 
 /// cos and sin of every direction bin.
@@ -190,8 +191,10 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
       round_done = true;
     }
   }
+  // The estimates fall slowly and rise at once: a frame that ran over the
+  // budget makes the next frames careful.
   if (budget > 0.0)
-    v_update_ms_ = since(updates_start) / updated;
+    v_update_ms_ = std::max(kEstimateDecay * v_update_ms_, since(updates_start) / updated);
   result.iterations = static_cast<double>(updated) / n;
 
   const auto extraction_start = Clock::now();
@@ -202,7 +205,7 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
     resampleV(scanner, result.objects);
   tracks_.assign(result.objects);
   if (budget > 0.0)
-    extraction_ms_ = since(extraction_start);
+    extraction_ms_ = std::max(kEstimateDecay * extraction_ms_, since(extraction_start));
 
   result.iteration = iteration_;
   result.time_ms = since(start);

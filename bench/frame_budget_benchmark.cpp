@@ -1,0 +1,68 @@
+// Time per frame under a frame budget (issue 4): a 640x480 sequence with a
+// moving arrow over clutter, the paper's counts (30 V x 60 M per prototype,
+// 3 prototypes) and the flow on. Each benchmark iteration is one frame; the
+// counters give the slowest frame, the share of frames over the budget and
+// the iterations (paper 3.6) run per frame. Arg: budget in ms, 0 = none.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "amcr/recognizer.h"
+#include "scene_drawing.h"
+
+namespace
+{
+using amcr_test::ShapeId;
+
+amcr::Affine movingPose(int frame)
+{
+  const double t = 2.0 * M_PI * frame / 200.0;
+  return amcr_test::makeAffine(amcr_test::prototypeCentre(), {320.0 + 110.0 * std::sin(t), 240.0 + 55.0 * std::sin(2.0 * t)},
+                               (20.0 + 2.5 * frame) * M_PI / 180.0, 0.6, 0.52, 0.15);
+}
+
+const std::vector<cv::Mat>& movingFrames()
+{
+  static const std::vector<cv::Mat> frames = [] {
+    amcr_test::Scene scene;
+    scene.objects.push_back({ShapeId::kArrow, movingPose(0)});
+    scene.clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
+    scene.clutter.seed = 301;
+    return amcr_test::renderMovingSequence(scene, 200, [](int k) {
+      return std::vector<amcr_test::Placement>{{ShapeId::kArrow, movingPose(k)}};
+    });
+  }();
+  return frames;
+}
+
+void BM_FrameBudget(benchmark::State& state)
+{
+  static const auto memory = amcr_test::drawnMemory({ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar});
+  amcr::Params params;
+  params.num_v_particles = 30;
+  params.frame_budget_ms = static_cast<double>(state.range(0));
+  amcr::Recognizer recognizer(params, memory);
+  const std::vector<cv::Mat>& sequence = movingFrames();  // rendered before the clock runs
+  std::size_t k = 0;
+  double slowest = 0.0, iterations = 0.0;
+  long frames = 0, over = 0;
+  for (auto _ : state)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const amcr::RecognitionResult result = recognizer.step(sequence[k++ % sequence.size()]);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    slowest = std::max(slowest, ms);
+    over += params.frame_budget_ms > 0.0 && ms > params.frame_budget_ms;
+    iterations += result.iterations;
+    ++frames;
+  }
+  state.counters["slowest_ms"] = slowest;
+  state.counters["over_budget_share"] = frames ? static_cast<double>(over) / frames : 0.0;
+  state.counters["iterations_per_frame"] = frames ? iterations / frames : 0.0;
+}
+BENCHMARK(BM_FrameBudget)->Arg(0)->Arg(16)->Arg(8)->Iterations(200)->Unit(benchmark::kMillisecond);
+}  // namespace
