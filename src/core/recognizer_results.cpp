@@ -17,29 +17,7 @@ constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the
 constexpr double kKeepTrackRatio = 0.65;           // a tracked object stays at this share of the decision threshold
 constexpr double kTrackDistance = 40.0;            // px an object's centre may move between frames and keep its track
 constexpr double kVerificationGain = 4.0;          // log-weight per unit of outline score above 0.5 (V-resampling)
-
-/// Axis-aligned box of a point set.
-cv::Rect2d boundsOf(const std::vector<cv::Point2d>& points)
-{
-  if (points.empty())
-    return {};
-  double x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
-  for (const auto& p : points)
-  {
-    x0 = std::min(x0, p.x);
-    x1 = std::max(x1, p.x);
-    y0 = std::min(y0, p.y);
-    y1 = std::max(y1, p.y);
-  }
-  return {x0, y0, x1 - x0, y1 - y0};
-}
-
-double overlap(const cv::Rect2d& a, const cv::Rect2d& b)
-{
-  const double inter = (a & b).area();
-  const double uni = a.area() + b.area() - inter;
-  return uni > 0 ? inter / uni : 0.0;
-}
+constexpr double kSameObjectOverlap = 0.5;         // outlines overlapping more are one object: the better is kept
 }  // namespace
 
 void Recognizer::computeClusters()
@@ -191,7 +169,6 @@ std::vector<RecognizedObject> Recognizer::extractObjects(const RadialScanner& sc
 
   // Report what passes the decision threshold; of two overlapping objects the better one.
   std::vector<RecognizedObject> objects;
-  std::vector<cv::Rect2d> boxes;
   for (auto& c : candidates)
   {
     // Hysteresis: an object recognized in the previous frame stays while its
@@ -200,13 +177,11 @@ std::vector<RecognizedObject> Recognizer::extractObjects(const RadialScanner& sc
     const double threshold = params_.decision_threshold * (tracked ? kKeepTrackRatio : 1.0);
     if (c.score < threshold || c.support < (tracked ? 1 : params_.min_support))
       continue;
-    const cv::Rect2d box = boundsOf(c.outline);
     bool suppressed = false;
-    for (const auto& b : boxes)
-      suppressed = suppressed || overlap(box, b) > 0.5;
+    for (const auto& kept : objects)
+      suppressed = suppressed || outlineOverlap(c.outline, kept.outline) > kSameObjectOverlap;
     if (suppressed)
       continue;
-    boxes.push_back(box);
     objects.push_back(std::move(c));
   }
   return objects;
