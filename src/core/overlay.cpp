@@ -283,12 +283,16 @@ cv::Mat drawOverlay(const cv::Mat& input, const Recognizer& recognizer, const Re
   }
 
   // V-particles on top: circle in the dominant prototype's colour, heading
-  // tick in the V-particle's own colour.
+  // tick in the V-particle's own colour, and a white trail from where the
+  // optical flow took it in this frame.
+  const std::vector<cv::Point2f>& origins = recognizer.flowOrigins();
   for (std::size_t v = 0; options.draw_v_particles && v < vs.size(); ++v)
   {
     const cv::Point2d p(vs[v].x, vs[v].y);
     if (!finite(p) || !std::isfinite(vs[v].theta))
       continue;
+    if (v < origins.size())
+      cv::line(image, toPixel(cv::Point2d(origins[v])), toPixel(p), cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
     const cv::Scalar circle_colour = dominant[v] >= 0 ? prototypeColour(dominant[v]) : kUndecided;
     const cv::Point2d tip(p.x + options.heading_length * std::cos(vs[v].theta),
                           p.y + options.heading_length * std::sin(vs[v].theta));
@@ -301,7 +305,8 @@ cv::Mat drawOverlay(const cv::Mat& input, const Recognizer& recognizer, const Re
     const std::string status = "iteration " + std::to_string(result.iteration) + "  " +
                                format("%.1f ms", result.time_ms) + "  converged V " +
                                std::to_string(result.converged_v_particles) + "/" + std::to_string(vs.size()) +
-                               "  objects " + std::to_string(result.objects.size());
+                               "  objects " + std::to_string(result.objects.size()) +
+                               (result.iterations < 1.0 ? format("  %.2f of an iteration", result.iterations) : "");
     drawText(image, status, cv::Point(0, 0), cv::Scalar(255, 255, 255));
   }
   return canvas;
