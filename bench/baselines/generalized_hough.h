@@ -1,0 +1,50 @@
+// Baseline: OpenCV's GeneralizedHoughGuil (rotation and scale) on the prototype's edges,
+// one detector per prototype and print polarity (Guil's features use the gradient
+// direction, so a dark-on-light template does not find a light-on-dark print); the
+// detection with the most position votes per template edge point wins. It models a similarity only: shear and
+// anisotropic scale are out of its reach by design.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include "baseline.h"
+
+namespace amcr_bench
+{
+struct HoughConfig
+{
+  int template_side = 160;  ///< prototypes rescaled to this longer side, px
+  double min_scale = 0.5;   ///< template scale range in the frame
+  double max_scale = 2.0;
+  double scale_step = 0.05;
+  double angle_step = 2.0;  ///< degrees, over the full circle
+  int canny_low = 50;
+  int canny_high = 100;
+  int angle_votes = 20;     ///< Guil's vote thresholds, set low (found by hand on clean
+  int scale_votes = 20;     ///< rotated and scaled copies of a prototype)
+  int position_votes = 5;
+  int report_votes = 15;    ///< position votes a detection needs to be reported
+};
+
+class GeneralizedHough : public Method
+{
+public:
+  GeneralizedHough(const std::vector<PrototypeImage>& prototypes, const HoughConfig& config = HoughConfig());
+  std::string name() const override { return "ght"; }
+  std::vector<Detection> detect(const cv::Mat& grey) override;
+
+private:
+  struct Model
+  {
+    std::string label;
+    std::vector<cv::Ptr<cv::GeneralizedHoughGuil>> detectors;  ///< dark on light, light on dark
+    cv::Matx23d template_to_original;
+    cv::Point2d centre;  ///< template centre that the detectors locate, template px
+    int edge_points = 1;  ///< of the template: votes are compared per edge point
+  };
+  HoughConfig config_;
+  std::vector<Model> models_;
+};
+}  // namespace amcr_bench
