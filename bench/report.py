@@ -297,8 +297,7 @@ memory, no memory shape in view; `two-objects`: two of the paper memory at once,
 halves of the frame. Frames are numbered from 1.
 """
 
-
-\
+METHODS_TEXT = """\
 Every method gets the same prototypes (the suite's `prototypes/` folder) and the same frames, one
 core each (OpenCV threads off), and reports labels with a prototype->image affine per frame:
 - **AMCR**: `config/amcr.yaml` as committed (60 V-particles x 60 M-particles per prototype),
