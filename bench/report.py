@@ -313,12 +313,14 @@ core each (OpenCV threads off), and reports labels with a prototype->image affin
   reported when the distance is below 0.05 (each contour to its best prototype only); the affine
   from the moments (centroids, principal axes scaled by their spread, signs by third-order skew).
 - **GHT Guil** (`cv::GeneralizedHoughGuil`): prototypes rescaled to 160 px, one detector per
-  prototype and polarity, full circle in 2-degree steps, scale 0.5-2.0 in steps of 0.05, vote
-  thresholds 20/20/5 (angle/scale/position, set by hand on clean rotated copies), reported with at
-  least 15 position votes, ranked by votes per template edge point; a similarity only (no shear,
-  no anisotropic scale). It takes seconds per frame, so it runs on a sample of frames (the
-  "frames run" row), which is enough for a method that keeps no state from frame to frame; its
-  accuracy is shown at the frames it ran and "held" figures do not apply to it.
+  prototype and print polarity, full circle in 2-degree steps, scale 0.5-2.0 in steps of 0.05,
+  vote thresholds 0.2/0.04/0.02 of the template's edge points (angle/scale/position, set by hand
+  on clean rotated copies and one cluttered frame: lower ones take tens of seconds per prototype on
+  clutter), reported with position votes of at least 0.03 of the edge points, ranked by votes per
+  edge point; a similarity only (no shear, no anisotropic scale). It takes 0.3-2 s per prototype and
+  polarity on a cluttered frame, so it runs on the last frame of a few sequences only (the "frames
+  run" row); it keeps no state from frame to frame, so the sample says what it does on any frame,
+  but it is small: read its figures as indicative.
 """
 
 

@@ -19,6 +19,10 @@ GeneralizedHough::GeneralizedHough(const std::vector<PrototypeImage>& prototypes
       cv::Mat view;
       mask.convertTo(view, CV_8U, inverted ? 160.0 / 255 : -160.0 / 255, inverted ? 40 : 200);
       cv::GaussianBlur(view, view, cv::Size(), 1.0);
+      cv::Mat edges;
+      cv::Canny(view, edges, config.canny_low, config.canny_high);
+      const int n = std::max(1, cv::countNonZero(edges));
+      model.edge_points = n;
       cv::Ptr<cv::GeneralizedHoughGuil> d = cv::createGeneralizedHoughGuil();
       d->setMinDist(100);
       d->setLevels(360);
@@ -27,18 +31,15 @@ GeneralizedHough::GeneralizedHough(const std::vector<PrototypeImage>& prototypes
       d->setMinAngle(0);
       d->setMaxAngle(360);
       d->setAngleStep(config.angle_step);
-      d->setAngleThresh(config.angle_votes);
+      d->setAngleThresh(std::max(1, static_cast<int>(config.angle_votes * n)));
       d->setMinScale(config.min_scale);
       d->setMaxScale(config.max_scale);
       d->setScaleStep(config.scale_step);
-      d->setScaleThresh(config.scale_votes);
-      d->setPosThresh(config.position_votes);
+      d->setScaleThresh(std::max(1, static_cast<int>(config.scale_votes * n)));
+      d->setPosThresh(std::max(1, static_cast<int>(config.position_votes * n)));
       d->setCannyLowThresh(config.canny_low);
       d->setCannyHighThresh(config.canny_high);
       d->setTemplate(view, cv::Point(mask.cols / 2, mask.rows / 2));
-      cv::Mat edges;
-      cv::Canny(view, edges, config.canny_low, config.canny_high);
-      model.edge_points = std::max(1, cv::countNonZero(edges));
       model.detectors.push_back(d);
     }
     models_.push_back(std::move(model));
@@ -73,7 +74,7 @@ std::vector<Detection> GeneralizedHough::detect(const cv::Mat& grey)
           best_position = positions[i];
         }
     }
-    if (best_votes < config_.report_votes)
+    if (best_votes < config_.report_votes * model.edge_points)
       continue;
     const double s = best_position[2], a = best_position[3] * CV_PI / 180.0;
     // template px -> frame px: rotate and scale about the template centre.

@@ -22,10 +22,13 @@ struct HoughConfig
   double angle_step = 2.0;  ///< degrees, over the full circle
   int canny_low = 50;
   int canny_high = 100;
-  int angle_votes = 20;     ///< Guil's vote thresholds, set low (found by hand on clean
-  int scale_votes = 20;     ///< rotated and scaled copies of a prototype)
-  int position_votes = 5;
-  int report_votes = 15;    ///< position votes a detection needs to be reported
+  // Guil's vote thresholds, as shares of the template's edge points (votes grow with them);
+  // set by hand on clean rotated, scaled copies of a prototype and on one cluttered frame:
+  // lower ones take tens of seconds per prototype on clutter, higher ones miss the copies.
+  double angle_votes = 0.2;
+  double scale_votes = 0.04;
+  double position_votes = 0.02;
+  double report_votes = 0.03;  ///< position votes per edge point a detection needs to be reported
 };
 
 class GeneralizedHough : public Method
