@@ -27,6 +27,7 @@ import cv2
 import numpy as np
 
 METHODS = ["amcr", "orb", "hu", "ght"]
+SUITES = ["paper", "mpeg7-70", "within-class", "similar", "clutter-only", "two-objects"]
 METHOD_NAMES = {"amcr": "AMCR", "orb": "ORB+RANSAC", "hu": "Hu moments", "ght": "GHT Guil"}
 CHECKPOINTS = [10, 30, 60]
 
@@ -123,7 +124,7 @@ def suite_metrics(out, suite, methods):
         m = {"sequences": len(per_seq), "frames_run": len(all_frames)}
         accuracy = {}
         last = min(total for _, total in per_seq.values())
-        for n in CHECKPOINTS + [last]:
+        for n in [c for c in CHECKPOINTS if c < last] + [last]:
             at = [f for frames, _ in per_seq.values() for f in frames if f["frame"] == n]
             if at and has_target:
                 accuracy[n] = sum(f["top1"] for f in at) / len(at)
@@ -185,7 +186,7 @@ def suite_table(suite, metrics, has_target):
         "%d (%d)" % (metrics[m]["sequences"], metrics[m]["frames_run"]) for m in methods)
     if has_target:
         last = max(metrics[m]["last_frame"] for m in methods)
-        for n in CHECKPOINTS + ([last] if last not in CHECKPOINTS else []):
+        for n in [c for c in CHECKPOINTS if c < last] + [last]:
             row("top-1 at frame %d" % n, lambda m, n=n: m["top1"].get(n), "pct")
         if suite == "two-objects":
             row("both objects reported at the last frame", lambda m: m.get("all_found_last"), "pct")
@@ -324,6 +325,62 @@ core each (OpenCV threads off), and reports labels with a prototype->image affin
 """
 
 
+def top1_at(m, n):
+    """Top-1 at frame n, or at the last frame when the sequences are shorter."""
+    if not m.get("top1"):
+        return None
+    return m["top1"].get(n, m["top1"].get(m["last_frame"]) if m["last_frame"] < n else None)
+
+
+def summary_section(everything):
+    """One table over the suites, and the aims of the issue against the figures."""
+    lines = ["## Summary", "",
+             "Top-1 at frame 60 (at the last frame where sequences are shorter; GHT: at the frames it ran), "
+             "false positives per frame, median affine corner error (px), mean time per frame (ms):", "",
+             "| suite | " + " | ".join(METHOD_NAMES[m] for m in METHODS) + " |", "|---" * (len(METHODS) + 1) + "|"]
+    for suite, metrics in everything.items():
+        cells = []
+        for method in METHODS:
+            m = metrics.get(method)
+            if not m:
+                cells.append("not run")
+                continue
+            top = top1_at(m, 60)
+            if method == "ght" and m.get("top1"):
+                top = mean(list(m["top1"].values()))
+            cells.append("%s, %s FP, %s px, %s ms" % (fmt(top, "pct") if top is not None else "-",
+                                                      fmt(m["fp_per_frame"], ""), fmt(m["affine_median"], "px"),
+                                                      fmt(m["time_mean_ms"], "ms")))
+        lines.append("| %s | %s |" % (suite, " | ".join(cells)))
+
+    def get(suite, method, key, *more):
+        value = everything.get(suite, {}).get(method, {})
+        for k in (key,) + more:
+            value = value.get(k) if isinstance(value, dict) else None
+        return value
+
+    aims = []
+    for suite in ("paper", "mpeg7-70"):
+        if suite in everything:
+            got = top1_at(everything[suite]["amcr"], 60)
+            best = max((top1_at(m, 60) or 0.0 for k, m in everything[suite].items() if k != "amcr"), default=0.0)
+            aims.append("- top-1 on `%s` by frame 60 >= 95%%: **%s** (%s); ahead of every baseline (best %s): **%s**"
+                        % (suite, fmt(got, "pct"), "met" if got is not None and got >= 0.95 else "not met",
+                           fmt(best, "pct"), "yes" if got is not None and got > best else "no"))
+    fp = get("clutter-only", "amcr", "fp_per_frame")
+    if fp is not None:
+        aims.append("- false positives per frame on `clutter-only` <= 0.05: **%.3f** (%s)"
+                    % (fp, "met" if fp <= 0.05 else "not met"))
+    errors = [everything[s]["amcr"]["affine_median"] for s in everything
+              if "amcr" in everything[s] and everything[s]["amcr"].get("affine_median") is not None]
+    if errors:
+        worst = max(errors)
+        aims.append("- median affine corner error < 3 px: **%.2f px** at worst over the suites (%s)"
+                    % (worst, "met" if worst < 3 else "not met"))
+    lines += ["", "The aims of issue 5 against these figures:", ""] + aims
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", required=True)
@@ -340,8 +397,8 @@ def main():
     parts = ["# AMCR benchmark", "", args.header, "", "## Methods", "", METHODS_TEXT,
              "## Suites", "", SUITES_TEXT]
     everything = {}
-    for suite_dir in sorted(glob.glob(os.path.join(args.out, "results", "*"))):
-        suite = os.path.basename(suite_dir)
+    found = [os.path.basename(d) for d in glob.glob(os.path.join(args.out, "results", "*"))]
+    for suite in [s for s in SUITES if s in found] + sorted(s for s in found if s not in SUITES):
         metrics, has_target = suite_metrics(args.out, suite, METHODS)
         if not metrics:
             continue
@@ -350,7 +407,9 @@ def main():
         if plt and has_target:
             plot_accuracy(plt, suite, metrics, os.path.join(args.out, "plots", "accuracy_%s.png" % suite))
             parts += ["![%s](plots/accuracy_%s.png)" % (suite, suite), ""]
-    parts += ["## Speed", "", speed_section(args.out, plt), latency_section(args.out)]
+    speed = speed_section(args.out, plt)
+    parts[4:4] = [summary_section(everything), ""]
+    parts += ["## Speed", "", speed, latency_section(args.out)]
     if plt is None:
         parts.append("(plots skipped: python3-matplotlib is not installed)")
     with open(os.path.join(args.out, "report.md"), "w") as f:
