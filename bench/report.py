@@ -325,6 +325,43 @@ core each (OpenCV threads off), and reports labels with a prototype->image affin
 """
 
 
+def breakdown(out, suite, method="amcr"):
+    """Top-1 at the last frame of `method`, split by the conditions of the sequences."""
+    groups = {}
+    for path in sorted(glob.glob(os.path.join(out, "sequences", suite, "seq_*", "truth.json"))):
+        name = os.path.basename(os.path.dirname(path))
+        result = os.path.join(out, "results", suite, "%s.%s.jsonl" % (name, method))
+        if not os.path.exists(result):
+            continue
+        with open(path) as f:
+            truth = json.load(f)
+        last = truth["frames"][-1]
+        if not last["objects"]:
+            return ""
+        rows = read_jsonl(result)
+        reported = rows.get(last["frame"], {}).get("objects", [])
+        right = bool(reported) and reported[0]["label"] in [o["label"] for o in last["objects"]]
+        a = affine(last["objects"][0]["prototype_to_image"])[:, :2]
+        singular = np.linalg.svd(a, compute_uv=False)
+        size = truth["prototype_sizes"][last["objects"][0]["label"]]
+        longer = max(size) * math.sqrt(abs(np.linalg.det(a)))
+        keys = ["print: %s" % ("light on dark" if truth["inverted"] else "dark on light"),
+                "target size: %s" % ("< 160 px" if longer < 160 else ">= 160 px"),
+                "anisotropy (singular value ratio): %s" % ("> 1.3" if singular[0] / singular[1] > 1.3 else "<= 1.3"),
+                "blur sigma: %s" % ("> 0.6" if truth["blur_sigma"] > 0.6 else "<= 0.6"),
+                "noise sigma: %s" % ("> 5" if truth["noise_sigma"] > 5 else "<= 5")]
+        for k in keys:
+            groups.setdefault(k, []).append(right)
+    if not groups:
+        return ""
+    lines = ["%s, top-1 at the last frame by condition of the sequence (size: the longer side of the "
+             "target's bounding box of the prototype, approximately):" % METHOD_NAMES[method], "",
+             "| condition | sequences | top-1 |", "|---|---|---|"]
+    for k in sorted(groups):
+        lines.append("| %s | %d | %s |" % (k, len(groups[k]), fmt(mean(groups[k]), "pct")))
+    return "\n".join(lines) + "\n"
+
+
 def top1_at(m, n):
     """Top-1 at frame n, or at the last frame when the sequences are shorter."""
     if not m.get("top1"):
@@ -404,6 +441,8 @@ def main():
             continue
         everything[suite] = metrics
         parts += ["## %s" % suite, "", suite_table(suite, metrics, has_target), ""]
+        if "amcr" in metrics and has_target and suite != "two-objects":
+            parts += [breakdown(args.out, suite), ""]
         if plt and has_target:
             plot_accuracy(plt, suite, metrics, os.path.join(args.out, "plots", "accuracy_%s.png" % suite))
             parts += ["![%s](plots/accuracy_%s.png)" % (suite, suite), ""]
