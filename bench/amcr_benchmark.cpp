@@ -3,11 +3,15 @@
 // prototype's lookup table. Inputs are drawn in code (test/scene_drawing.h).
 //
 //   rosrun amcr amcr_benchmark [--benchmark_filter=Step]
+//
+// One core: OpenCV's own threads are switched off before anything runs.
+// scripts/benchmark runs it with --benchmark_format=json for the report's speed section.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <opencv2/core/utility.hpp>
 
 #include "amcr/prototype.h"
 #include "amcr/prototype_memory.h"
@@ -51,7 +55,7 @@ void BM_RecognizerStep(benchmark::State& state)
   amcr::Params params;
   params.num_v_particles = static_cast<int>(state.range(0));
   params.m_particles_per_prototype = static_cast<int>(state.range(1));
-  static std::vector<std::shared_ptr<const amcr::PrototypeMemory>> memories(64);
+  static std::vector<std::shared_ptr<const amcr::PrototypeMemory>> memories(128);
   const int prototypes = static_cast<int>(state.range(2));
   if (!memories[prototypes])
     memories[prototypes] = memoryOf(prototypes);
@@ -71,6 +75,18 @@ BENCHMARK(BM_RecognizerStep)
     ->Args({10, 50, 3})   // the paper's figure 2
     ->Args({30, 60, 17})  // the paper's comparison memory
     ->Args({120, 60, 3})
+    // Scaling series: V count (60 M, 3 prototypes), M per prototype (30 V, 3 prototypes),
+    // prototype count (30 V x 60 M).
+    ->Args({15, 60, 3})
+    ->Args({240, 60, 3})
+    ->Args({30, 15, 3})
+    ->Args({30, 30, 3})
+    ->Args({30, 120, 3})
+    ->Args({30, 240, 3})
+    ->Args({30, 60, 1})
+    ->Args({30, 60, 8})
+    ->Args({30, 60, 35})
+    ->Args({30, 60, 70})
     ->Unit(benchmark::kMillisecond);
 
 // Building one prototype's lookup table (args: prototype_size px).
@@ -89,4 +105,13 @@ void BM_PrototypeTable(benchmark::State& state)
 BENCHMARK(BM_PrototypeTable)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv)
+{
+  cv::setNumThreads(1);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv))
+    return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,46 @@
+// What every recognizer of the benchmark gets and answers: the same prototypes
+// (white silhouette on black, as in the memory folder) and one grey frame at a
+// time; per frame a list of detections, best first.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace amcr_bench
+{
+struct PrototypeImage
+{
+  std::string label;
+  cv::Mat mask;  ///< 8-bit, shape > 127, as the file holds it
+};
+
+struct Detection
+{
+  std::string label;
+  double score = 0.0;             ///< the method's own confidence (higher is better)
+  cv::Matx23d prototype_to_image;  ///< original prototype px -> image px (pixel centres)
+  /// Pairs (image point, prototype point), when the method has them.
+  std::vector<std::pair<cv::Point2d, cv::Point2d>> correspondences;
+};
+
+class Method
+{
+public:
+  virtual ~Method() = default;
+  virtual std::string name() const = 0;
+  /// Forgets any state between sequences.
+  virtual void reset() {}
+  virtual std::vector<Detection> detect(const cv::Mat& grey) = 0;
+};
+
+/// Least-squares 2x3 affine taking `from` onto `to` (at least 3 points, not collinear);
+/// false when the system is singular.
+bool fitAffine(const std::vector<cv::Point2d>& from, const std::vector<cv::Point2d>& to, cv::Matx23d& out);
+
+/// The prototype scaled so that its longer side is `longer` px, with a `border` of black
+/// around it; `to_original` maps the scaled image's pixels back to the original's.
+cv::Mat normalisedPrototype(const cv::Mat& mask, int longer, int border, cv::Matx23d& to_original);
+}  // namespace amcr_bench

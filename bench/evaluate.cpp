@@ -1,0 +1,261 @@
+// amcr_evaluate: runs AMCR and the baselines on the same frames of one benchmark suite
+// (as bench/make_sequences writes it) and writes what each reports, frame by frame.
+//
+//   amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght]
+//                 [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N]
+//
+// Writes <out>/<sequence>.<method>.jsonl, one line per frame run:
+//   {"frame": k, "time_ms": t, "objects": [{"label": ..., "score": s,
+//    "prototype_to_image": [a,b,c,d,e,f], "correspondences": [[xi,yi,xp,yp], ...]}]}
+// and <out>/init.<method>.json (set-up time; for amcr the lookup tables' size). A file that
+// exists is not computed again (files are written under a temporary name, then renamed), so
+// an interrupted run resumes. Frames are processed on one core (OpenCV threads off). GHT is slow: it runs on --ght-frames (0-based; -1 = the last)
+// of the first --ght-sequences sequences only.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "amcr/params.h"
+#include "amcr/prototype_memory.h"
+#include "amcr_method.h"
+#include "baselines/generalized_hough.h"
+#include "baselines/hu_moments.h"
+#include "baselines/orb_homography.h"
+
+namespace fs = std::filesystem;
+using amcr_bench::Detection;
+using amcr_bench::Method;
+using amcr_bench::PrototypeImage;
+
+namespace
+{
+struct Options
+{
+  std::string suite, out, config = "config/amcr.yaml";
+  std::vector<std::string> methods = {"amcr", "orb", "hu", "ght"};
+  std::uint64_t seed = 1;
+  std::vector<int> ght_frames = {9, 29, 59, -1};
+  int ght_sequences = 1000000;
+};
+
+std::vector<std::string> split(const std::string& text)
+{
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');)
+    if (!part.empty())
+      parts.push_back(part);
+  return parts;
+}
+
+[[noreturn]] void usage(const std::string& error)
+{
+  std::cerr << "amcr_evaluate: " << error << "\n"
+            << "usage: amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght]\n"
+            << "                     [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N]\n";
+  std::exit(2);
+}
+
+Options parse(int argc, char** argv)
+{
+  Options o;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string key = argv[i];
+    if (i + 1 >= argc)
+      usage("missing value after " + key);
+    const std::string value = argv[++i];
+    if (key == "--suite")
+      o.suite = value;
+    else if (key == "--out")
+      o.out = value;
+    else if (key == "--config")
+      o.config = value;
+    else if (key == "--methods")
+      o.methods = split(value);
+    else if (key == "--seed")
+      o.seed = std::stoull(value);
+    else if (key == "--ght-frames")
+    {
+      o.ght_frames.clear();
+      for (const std::string& f : split(value))
+        o.ght_frames.push_back(std::stoi(f));
+    }
+    else if (key == "--ght-sequences")
+      o.ght_sequences = std::stoi(value);
+    else
+      usage("unknown option " + key);
+  }
+  if (o.suite.empty() || o.out.empty())
+    usage("--suite and --out are required");
+  return o;
+}
+
+std::vector<PrototypeImage> loadPrototypes(const std::string& dir)
+{
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".png")
+      files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  std::vector<PrototypeImage> prototypes;
+  for (const std::string& f : files)
+    prototypes.push_back({fs::path(f).stem().string(), cv::imread(f, cv::IMREAD_GRAYSCALE)});
+  return prototypes;
+}
+
+std::string number(double v)
+{
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.4f", v);
+  return text;
+}
+
+std::string jsonLine(int frame, double time_ms, const std::vector<Detection>& found)
+{
+  std::ostringstream s;
+  s << "{\"frame\": " << frame << ", \"time_ms\": " << number(time_ms) << ", \"objects\": [";
+  for (std::size_t i = 0; i < found.size(); ++i)
+  {
+    const Detection& d = found[i];
+    s << (i ? ", " : "") << "{\"label\": \"" << d.label << "\", \"score\": " << number(d.score)
+      << ", \"prototype_to_image\": [";
+    for (int k = 0; k < 6; ++k)
+      s << (k ? ", " : "") << number(d.prototype_to_image(k / 3, k % 3));
+    s << "], \"correspondences\": [";
+    for (std::size_t c = 0; c < d.correspondences.size(); ++c)
+    {
+      const auto& p = d.correspondences[c];
+      s << (c ? ", " : "") << "[" << number(p.first.x) << ", " << number(p.first.y) << ", " << number(p.second.x)
+        << ", " << number(p.second.y) << "]";
+    }
+    s << "]}";
+  }
+  s << "]}";
+  return s.str();
+}
+
+void writeAtomically(const fs::path& path, const std::string& text)
+{
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out)
+      throw std::runtime_error("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Builds one method; `init` receives its set-up figures as JSON members.
+std::unique_ptr<Method> makeMethod(const std::string& name, const Options& o, const std::vector<PrototypeImage>& prototypes,
+                                   std::string& init)
+{
+  if (name == "amcr")
+  {
+    amcr::Params params = amcr::loadParams(o.config);
+    params.seed = o.seed;
+    auto memory = std::make_shared<amcr::PrototypeMemory>(
+        amcr::PrototypeMemory::loadDirectory((fs::path(o.suite) / "prototypes").string(), params));
+    init = "\"table_bytes\": " + std::to_string(memory->tableBytes()) + ", \"prototypes\": " +
+           std::to_string(memory->size()) + ", \"num_v_particles\": " + std::to_string(params.num_v_particles) +
+           ", \"m_particles_per_prototype\": " + std::to_string(params.m_particles_per_prototype);
+    return std::make_unique<amcr_bench::AmcrMethod>(params, memory);
+  }
+  if (name == "orb")
+    return std::make_unique<amcr_bench::OrbHomography>(prototypes);
+  if (name == "hu")
+    return std::make_unique<amcr_bench::HuMoments>(prototypes);
+  if (name == "ght")
+    return std::make_unique<amcr_bench::GeneralizedHough>(prototypes);
+  usage("unknown method " + name);
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  const Options o = parse(argc, argv);
+  try
+  {
+    const std::vector<PrototypeImage> prototypes = loadPrototypes((fs::path(o.suite) / "prototypes").string());
+    if (prototypes.empty())
+      usage("no prototypes in " + o.suite + "/prototypes");
+    std::vector<fs::path> sequences;
+    for (const auto& entry : fs::directory_iterator(o.suite))
+      if (fs::exists(entry.path() / "truth.json"))
+        sequences.push_back(entry.path());
+    std::sort(sequences.begin(), sequences.end());
+    fs::create_directories(o.out);
+
+    for (const std::string& name : o.methods)
+    {
+      // Skip the set-up when every sequence of this method is done already.
+      const int runs = name == "ght" ? std::min<int>(o.ght_sequences, sequences.size()) : sequences.size();
+      int todo = 0;
+      for (int s = 0; s < runs; ++s)
+        todo += !fs::exists(fs::path(o.out) / (sequences[s].filename().string() + "." + name + ".jsonl"));
+      if (todo == 0)
+        continue;
+      std::string init;
+      cv::setNumThreads(-1);  // the set-up may use every core
+      const auto start = std::chrono::steady_clock::now();
+      std::unique_ptr<Method> method = makeMethod(name, o, prototypes, init);
+      const double init_ms = millisecondsSince(start);
+      cv::setNumThreads(1);  // frames: one core for every method
+      writeAtomically(fs::path(o.out) / ("init." + name + ".json"),
+                      "{\"init_ms\": " + number(init_ms) + (init.empty() ? "" : ", " + init) + "}\n");
+      std::cerr << fs::path(o.suite).filename().string() << ": " << name << " ready in " << number(init_ms / 1000) << " s, "
+                << todo << " sequences to run\n";
+
+      for (int s = 0; s < runs; ++s)
+      {
+        const fs::path result = fs::path(o.out) / (sequences[s].filename().string() + "." + name + ".jsonl");
+        if (fs::exists(result))
+          continue;
+        std::vector<cv::String> files;
+        cv::glob((sequences[s] / "frames" / "*.png").string(), files);
+        std::sort(files.begin(), files.end());
+        const int count = static_cast<int>(files.size());
+        std::set<int> only;
+        for (int f : o.ght_frames)
+          only.insert(f < 0 ? count + f : f);
+        method->reset();
+        std::string lines;
+        for (int k = 0; k < count; ++k)
+        {
+          if (name == "ght" && !only.count(k))
+            continue;
+          const cv::Mat frame = cv::imread(files[k], cv::IMREAD_GRAYSCALE);
+          if (frame.empty())
+            throw std::runtime_error("cannot read " + files[k]);
+          const auto t0 = std::chrono::steady_clock::now();
+          const std::vector<Detection> found = method->detect(frame);
+          lines += jsonLine(k, millisecondsSince(t0), found) + "\n";
+        }
+        writeAtomically(result, lines);
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "amcr_evaluate: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,489 @@
+#!/usr/bin/python3
+"""Turn a benchmark run into figures: metrics per suite and method, Markdown tables, PNG plots.
+
+Reads <out>/sequences (truth), <out>/results/<suite>/<seq>.<method>.jsonl (amcr_evaluate),
+<out>/speed.json (Google Benchmark) and <out>/latency.json (nodelet latency), when present.
+Writes <out>/report.md, <out>/summary.md (the summary and the speed only), <out>/metrics.json
+and <out>/plots/*.png.
+
+Definitions (frames are numbered from 1):
+- top-1 at frame N: the best-scored report of frame N has a label of an object in view;
+- held from: the first frame from which the top-1 stays correct to the last frame;
+- false positives per frame: reports whose label is not in view (every report in clutter-only);
+- affine error: mean distance (px) between the prototype's 4 corners mapped by the reported and by
+  the true prototype->image affine, over reports with a right label (not for within-class, where
+  the memory holds another instance than the one shown);
+- correspondence error: median distance (px) between a reported image point and the true image of
+  its prototype point.
+"""
+
+import argparse
+import glob
+import json
+import math
+import os
+import statistics
+
+import cv2
+import numpy as np
+
+METHODS = ["amcr", "orb", "hu", "ght"]
+SUITES = ["paper", "mpeg7-70", "within-class", "similar", "clutter-only", "two-objects"]
+METHOD_NAMES = {"amcr": "AMCR", "orb": "ORB+RANSAC", "hu": "Hu moments", "ght": "GHT Guil"}
+CHECKPOINTS = [10, 30, 60]
+
+
+def read_jsonl(path):
+    with open(path) as f:
+        return {row["frame"]: row for row in map(json.loads, f) if row}
+
+
+def corners(size):
+    w, h = size
+    return np.array([[0, 0, 1], [w - 1, 0, 1], [w - 1, h - 1, 1], [0, h - 1, 1]], dtype=np.float64)
+
+
+def affine(values):
+    return np.asarray(values, dtype=np.float64).reshape(2, 3)
+
+
+def median(values):
+    return statistics.median(values) if values else None
+
+
+def mean(values):
+    return sum(values) / len(values) if values else None
+
+
+def evaluate_sequence(truth, rows, sizes, geometry):
+    """Per-frame outcomes of one method on one sequence."""
+    frames = []
+    for t in truth["frames"]:
+        k = t["frame"]
+        if k not in rows:
+            continue
+        labels = [o["label"] for o in t["objects"]]
+        reported = rows[k]["objects"]
+        top = reported[0]["label"] if reported else None
+        outcome = {"frame": k + 1, "time_ms": rows[k]["time_ms"],
+                   "top1": bool(labels) and top in labels,
+                   "all_found": bool(labels) and all(l in {r["label"] for r in reported} for l in labels),
+                   "false_positives": sum(r["label"] not in labels for r in reported),
+                   "affine_errors": [], "corr_errors": []}
+        if geometry:
+            for r in reported:
+                if r["label"] not in labels:
+                    continue
+                true = affine(t["objects"][labels.index(r["label"])]["prototype_to_image"])
+                got = affine(r["prototype_to_image"])
+                c = corners(sizes[r["label"]])
+                outcome["affine_errors"].append(float(np.mean(np.linalg.norm(c @ got.T - c @ true.T, axis=1))))
+                for xi, yi, xp, yp in r["correspondences"]:
+                    expected = true @ np.array([xp, yp, 1.0])
+                    outcome["corr_errors"].append(float(math.hypot(xi - expected[0], yi - expected[1])))
+        frames.append(outcome)
+    return frames
+
+
+def held_from(frames, total):
+    """1-based frame from which top-1 stays right to the end; None when never (or not every frame ran)."""
+    if len(frames) != total:
+        return None
+    start = None
+    for f in frames:
+        if f["top1"]:
+            start = f["frame"] if start is None else start
+        else:
+            start = None
+    return start
+
+
+def suite_metrics(out, suite, methods):
+    seq_dir = os.path.join(out, "sequences", suite)
+    res_dir = os.path.join(out, "results", suite)
+    sizes = {}
+    for p in glob.glob(os.path.join(seq_dir, "prototypes", "*.png")):
+        image = cv2.imread(p, cv2.IMREAD_GRAYSCALE)
+        sizes[os.path.splitext(os.path.basename(p))[0]] = (image.shape[1], image.shape[0])
+    truths = {}
+    for path in sorted(glob.glob(os.path.join(seq_dir, "seq_*", "truth.json"))):
+        with open(path) as f:
+            truths[os.path.basename(os.path.dirname(path))] = json.load(f)
+    has_target = any(t["frames"][0]["objects"] for t in truths.values())
+    geometry = suite != "within-class"
+
+    metrics = {}
+    for method in methods:
+        per_seq = {}
+        for name, truth in truths.items():
+            path = os.path.join(res_dir, "%s.%s.jsonl" % (name, method))
+            if os.path.exists(path):
+                per_seq[name] = (evaluate_sequence(truth, read_jsonl(path), sizes, geometry), len(truth["frames"]))
+        if not per_seq:
+            continue
+        all_frames = [f for frames, _ in per_seq.values() for f in frames]
+        m = {"sequences": len(per_seq), "frames_run": len(all_frames)}
+        accuracy = {}
+        last = min(total for _, total in per_seq.values())
+        for n in [c for c in CHECKPOINTS if c < last] + [last]:
+            at = [f for frames, _ in per_seq.values() for f in frames if f["frame"] == n]
+            if at and has_target:
+                accuracy[n] = sum(f["top1"] for f in at) / len(at)
+        m["top1"] = accuracy
+        m["last_frame"] = last
+        if has_target:
+            at_last = [frames[-1] for frames, total in per_seq.values() if frames and frames[-1]["frame"] == total]
+            m["all_found_last"] = mean([f["all_found"] for f in at_last])
+            held = [held_from(frames, total) for frames, total in per_seq.values()]
+            if all(len(frames) == total for frames, total in per_seq.values()):
+                m["held_share"] = sum(h is not None for h in held) / len(held)
+                m["held_median"] = median([h if h is not None else math.inf for h in held])
+            curve = {}
+            for f in all_frames:
+                curve.setdefault(f["frame"], []).append(f["top1"])
+            m["curve"] = {k: sum(v) / len(v) for k, v in sorted(curve.items())}
+        m["fp_per_frame"] = mean([f["false_positives"] for f in all_frames])
+        m["affine_median"] = median([e for f in all_frames for e in f["affine_errors"]])
+        m["affine_last_median"] = median([f["affine_errors"][0] for frames, _ in per_seq.values()
+                                          for f in frames[-1:] if f["affine_errors"]])
+        m["corr_median"] = median([e for f in all_frames for e in f["corr_errors"]])
+        times = [f["time_ms"] for f in all_frames]
+        m["time_mean_ms"] = mean(times)
+        m["time_median_ms"] = median(times)
+        init = os.path.join(res_dir, "init.%s.json" % method)
+        if os.path.exists(init):
+            with open(init) as f:
+                m["init"] = json.load(f)
+        metrics[method] = m
+    return metrics, has_target
+
+
+def fmt(value, kind):
+    if value is None:
+        return "n/a"
+    if kind == "pct":
+        return "%.0f%%" % (100 * value)
+    if kind == "frames":
+        return "never" if value == math.inf else "%g" % value
+    if kind == "px":
+        return "%.2f" % value
+    if kind == "ms":
+        return "%.1f" % value if value < 100 else "%.0f" % value
+    return "%.3f" % value
+
+
+def suite_table(suite, metrics, has_target):
+    methods = [m for m in METHODS if m in metrics]
+    rows = []
+    header = "| | " + " | ".join(METHOD_NAMES[m] for m in methods) + " |"
+    rows.append(header)
+    rows.append("|---" * (len(methods) + 1) + "|")
+
+    def row(title, get, kind):
+        rows.append("| %s | %s |" % (title, " | ".join(fmt(get(metrics[m]), kind) for m in methods)))
+
+    row("sequences (frames run)", lambda m: None, "")
+    rows[-1] = "| sequences (frames run) | %s |" % " | ".join(
+        "%d (%d)" % (metrics[m]["sequences"], metrics[m]["frames_run"]) for m in methods)
+    if has_target:
+        last = max(metrics[m]["last_frame"] for m in methods)
+        for n in [c for c in CHECKPOINTS if c < last] + [last]:
+            row("top-1 at frame %d" % n, lambda m, n=n: m["top1"].get(n), "pct")
+        if suite == "two-objects":
+            row("both objects reported at the last frame", lambda m: m.get("all_found_last"), "pct")
+        row("share with a held correct decision", lambda m: m.get("held_share"), "pct")
+        row("median frames to the held correct decision", lambda m: m.get("held_median"), "frames")
+    row("false positives per frame", lambda m: m["fp_per_frame"], "")
+    if has_target and suite != "within-class":
+        row("affine corner error, median over frames (px)", lambda m: m["affine_median"], "px")
+        row("affine corner error at the last frame, median (px)", lambda m: m["affine_last_median"], "px")
+        row("correspondence error, median (px)", lambda m: m["corr_median"], "px")
+    row("time per frame, mean (ms)", lambda m: m["time_mean_ms"], "ms")
+    row("time per frame, median (ms)", lambda m: m["time_median_ms"], "ms")
+    row("set-up (prototypes), s", lambda m: m.get("init", {}).get("init_ms", 0) / 1000, "px")
+    return "\n".join(rows)
+
+
+def plot_accuracy(plt, suite, metrics, path):
+    fig, ax = plt.subplots(figsize=(6, 3.6))
+    for m in METHODS:
+        if m in metrics and metrics[m].get("curve"):
+            curve = metrics[m]["curve"]
+            style = "o" if len(curve) < 10 else "-"
+            ax.plot(list(curve), list(curve.values()), style, label=METHOD_NAMES[m])
+    ax.set_xlabel("frame")
+    ax.set_ylabel("top-1 accuracy")
+    ax.set_ylim(-0.02, 1.02)
+    ax.set_title(suite)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="lower right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def speed_section(out, plt):
+    path = os.path.join(out, "speed.json")
+    if not os.path.exists(path):
+        return "Speed: not measured in this run (speed.json missing).\n"
+    with open(path) as f:
+        bench = json.load(f)
+    steps, tables = [], []
+    for b in bench["benchmarks"]:
+        if b.get("run_type", "iteration") != "iteration":
+            continue
+        if b["name"].startswith("BM_RecognizerStep"):
+            v, m, p = (int(x) for x in b["name"].split("/")[1:4])
+            ms = b["real_time"] if b["time_unit"] == "ms" else b["real_time"] / 1e6
+            steps.append((v, m, p, ms, b.get("items_per_second", 0)))
+        elif b["name"].startswith("BM_PrototypeTable"):
+            side = int(b["name"].split("/")[1])
+            tables.append((side, b["real_time"], b.get("table_MB", 0)))
+    context = bench.get("context", {})
+    lines = ["Google Benchmark on one core (%s CPUs at %s MHz reported; %s)."
+             % (context.get("num_cpus"), context.get("mhz_per_cpu"), context.get("date")), "",
+             "| V-particles | M per prototype | prototypes | relational particles | ms per iteration | updates/s |",
+             "|---|---|---|---|---|---|"]
+    for v, m, p, ms, ups in sorted(steps, key=lambda s: (s[2], s[0], s[1])):
+        lines.append("| %d | %d | %d | %d | %.2f | %.2f M |" % (v, m, p, v * m * p, ms, ups / 1e6))
+    if tables:
+        lines += ["", "| prototype_size (px) | table build (ms) | table size (MB) |", "|---|---|---|"]
+        lines += ["| %d | %.0f | %.2f |" % t for t in sorted(tables)]
+    if plt and steps:
+        fig, ax = plt.subplots(figsize=(6, 3.6))
+        for label, key, fixed in (("V varies (60 M, 3 prototypes)", 0, lambda s: s[1] == 60 and s[2] == 3),
+                                  ("M varies (30 V, 3 prototypes)", 1, lambda s: s[0] == 30 and s[2] == 3),
+                                  ("prototypes vary (30 V x 60 M)", 2, lambda s: s[0] == 30 and s[1] == 60)):
+            series = sorted((s[0] * s[1] * s[2], s[3]) for s in steps if fixed(s))
+            if len(series) > 1:
+                ax.plot([x for x, _ in series], [y for _, y in series], "o-", label=label)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("relational particles (V x M x prototypes)")
+        ax.set_ylabel("ms per iteration")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, "plots", "time_per_iteration.png"), dpi=100)
+        plt.close(fig)
+        lines += ["", "![time per iteration](plots/time_per_iteration.png)"]
+    return "\n".join(lines) + "\n"
+
+
+def latency_section(out):
+    path = os.path.join(out, "latency.json")
+    if not os.path.exists(path):
+        return "Nodelet latency: not measured in this run.\n"
+    with open(path) as f:
+        lat = json.load(f)
+    return ("Nodelet latency (amcr_node, %s): %d frames of 640x480 at %s Hz, %d prototypes, %d V x %d M: "
+            "processing time median %.1f ms (mean %.1f); publish-to-receipt latency median %.1f ms, "
+            "95th percentile %.1f ms; %d of %d frames answered.\n"
+            % (lat["what"], lat["frames"], lat["rate"], lat["prototypes"], lat["v"], lat["m"],
+               lat["processing_median_ms"], lat["processing_mean_ms"], lat["latency_median_ms"],
+               lat["latency_p95_ms"], lat["answered"], lat["frames"]))
+
+
+SUITES_TEXT = """\
+Rendered by `bench/make_sequences` (seeded; one generator per sequence): 640x480 grey frames, an
+MPEG-7 silhouette printed dark on light (70%) or light on dark (30%) over a real photo from
+opencv-doc (contrast-reduced, random crop), under a random affine (longer side 120-240 px, any
+rotation, shear up to 0.3, anisotropic scale up to about 1.5:1) that drifts, spins 0.3-1.5
+degrees per frame and breathes in scale and shear; 3-5 static distractor silhouettes of MPEG-7
+classes not in memory (random polygons, ellipses and crosses in the 70-class suites, where every
+class is in memory), 3-6 lines, a lighting gradient (10-35%), blur (sigma 0-1.2) and noise
+(sigma 2-8). `paper`: 17 classes in memory (every 4th class in name order, instance 1), the same
+instance shown; `mpeg7-70`: all 70 classes; `within-class`: memory instance 1 of all 70 classes,
+another instance shown; `similar`: the 3 birds closest in Hu moments; `clutter-only`: the paper
+memory, no memory shape in view; `two-objects`: two of the paper memory at once, in the two
+halves of the frame. Frames are numbered from 1.
+"""
+
+METHODS_TEXT = """\
+Every method gets the same prototypes (the suite's `prototypes/` folder) and the same frames, one
+core each (OpenCV threads off), and reports labels with a prototype->image affine per frame:
+- **AMCR**: `config/amcr.yaml` as committed (60 V-particles x 60 M-particles per prototype),
+  one recognizer per sequence, reset between sequences; what it reports (score >= the decision
+  threshold) is taken as it is.
+- **ORB+RANSAC** (find_object_2d's method): prototypes rescaled to 200 px, described in both print
+  polarities (400 ORB features each), all in one FLANN LSH index; 1500 ORB features per frame,
+  ratio test 0.8 over the whole memory, RANSAC homography (5 px) per prototype, reported with at
+  least 10 inliers; the affine is the least-squares fit of the homography at the prototype's corners
+  and centre; the inliers are its correspondences. Stateless: each frame on its own.
+- **Hu moments**: Otsu and adaptive (51 px, C 10) thresholds in both polarities, contours of
+  800 px^2 to 40% of the frame, `cv::matchShapes` (I1) against each prototype's outer contour,
+  reported when the distance is below 0.05 (each contour to its best prototype only); the affine
+  from the moments (centroids, principal axes scaled by their spread, signs by third-order skew).
+- **GHT Guil** (`cv::GeneralizedHoughGuil`): prototypes rescaled to 160 px, one detector per
+  prototype and print polarity, full circle in 2-degree steps, scale 0.5-2.0 in steps of 0.05,
+  vote thresholds 0.2/0.04/0.02 of the template's edge points (angle/scale/position, set by hand
+  on clean rotated copies and one cluttered frame: lower ones take tens of seconds per prototype on
+  clutter), reported with position votes of at least 0.03 of the edge points, ranked by votes per
+  edge point; a similarity only (no shear, no anisotropic scale). It is slow on clutter, from
+  0.3 s to minutes per prototype and polarity (one `paper` frame took 9 minutes with 17
+  prototypes), so the full run gives it the last frame of every `similar` sequence (3 prototypes)
+  and of one `paper` sequence only (the "frames run" row), and none of the other suites. It keeps
+  no state from frame to frame, so a frame says what it does on any frame, but the sample is small:
+  read its figures as indicative.
+"""
+
+
+def breakdown(out, suite, method="amcr"):
+    """Top-1 at the last frame of `method`, split by the conditions of the sequences."""
+    groups = {}
+    for path in sorted(glob.glob(os.path.join(out, "sequences", suite, "seq_*", "truth.json"))):
+        name = os.path.basename(os.path.dirname(path))
+        result = os.path.join(out, "results", suite, "%s.%s.jsonl" % (name, method))
+        if not os.path.exists(result):
+            continue
+        with open(path) as f:
+            truth = json.load(f)
+        last = truth["frames"][-1]
+        if not last["objects"]:
+            return ""
+        rows = read_jsonl(result)
+        reported = rows.get(last["frame"], {}).get("objects", [])
+        right = bool(reported) and reported[0]["label"] in [o["label"] for o in last["objects"]]
+        a = affine(last["objects"][0]["prototype_to_image"])[:, :2]
+        singular = np.linalg.svd(a, compute_uv=False)
+        size = truth["prototype_sizes"][last["objects"][0]["label"]]
+        longer = max(size) * math.sqrt(abs(np.linalg.det(a)))
+        keys = ["print: %s" % ("light on dark" if truth["inverted"] else "dark on light"),
+                "target size: %s" % ("< 160 px" if longer < 160 else ">= 160 px"),
+                "anisotropy (singular value ratio): %s" % ("> 1.3" if singular[0] / singular[1] > 1.3 else "<= 1.3"),
+                "blur sigma: %s" % ("> 0.6" if truth["blur_sigma"] > 0.6 else "<= 0.6"),
+                "noise sigma: %s" % ("> 5" if truth["noise_sigma"] > 5 else "<= 5")]
+        for k in keys:
+            groups.setdefault(k, []).append(right)
+    if not groups:
+        return ""
+    lines = ["%s, top-1 at the last frame by condition of the sequence (size: the longer side of the "
+             "target's bounding box of the prototype, approximately):" % METHOD_NAMES[method], "",
+             "| condition | sequences | top-1 |", "|---|---|---|"]
+    for k in sorted(groups):
+        lines.append("| %s | %d | %s |" % (k, len(groups[k]), fmt(mean(groups[k]), "pct")))
+    return "\n".join(lines) + "\n"
+
+
+def top1_at(m, n):
+    """Top-1 at frame n, or at the last frame when the sequences are shorter."""
+    if not m.get("top1"):
+        return None
+    return m["top1"].get(n, m["top1"].get(m["last_frame"]) if m["last_frame"] < n else None)
+
+
+def best_updates(out):
+    """(updates/s, benchmark name) of the fastest BM_RecognizerStep, or None."""
+    path = os.path.join(out, "speed.json")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        steps = [b for b in json.load(f)["benchmarks"] if b["name"].startswith("BM_RecognizerStep")
+                 and b.get("run_type", "iteration") == "iteration"]
+    if not steps:
+        return None
+    best = max(steps, key=lambda b: b.get("items_per_second", 0))
+    return best.get("items_per_second", 0), best["name"]
+
+
+def summary_section(everything, updates=None):
+    """One table over the suites, and the aims of the issue against the figures."""
+    lines = ["## Summary", "",
+             "Top-1 at frame 60 (at the last frame where sequences are shorter; GHT: at the frames it ran), "
+             "false positives per frame, median affine corner error (px), mean time per frame (ms):", "",
+             "| suite | " + " | ".join(METHOD_NAMES[m] for m in METHODS) + " |", "|---" * (len(METHODS) + 1) + "|"]
+    for suite, metrics in everything.items():
+        cells = []
+        for method in METHODS:
+            m = metrics.get(method)
+            if not m:
+                cells.append("not run")
+                continue
+            top = top1_at(m, 60)
+            if method == "ght" and m.get("top1"):
+                top = mean(list(m["top1"].values()))
+            cells.append("%s, %s FP, %s px, %s ms" % (fmt(top, "pct") if top is not None else "-",
+                                                      fmt(m["fp_per_frame"], ""), fmt(m["affine_median"], "px"),
+                                                      fmt(m["time_mean_ms"], "ms")))
+        lines.append("| %s | %s |" % (suite, " | ".join(cells)))
+
+    def get(suite, method, key, *more):
+        value = everything.get(suite, {}).get(method, {})
+        for k in (key,) + more:
+            value = value.get(k) if isinstance(value, dict) else None
+        return value
+
+    aims = []
+    for suite in ("paper", "mpeg7-70"):
+        if suite in everything:
+            got = top1_at(everything[suite]["amcr"], 60)
+            best = max((top1_at(m, 60) or 0.0 for k, m in everything[suite].items() if k != "amcr"), default=0.0)
+            aims.append("- top-1 on `%s` by frame 60 >= 95%%: **%s** (%s); ahead of every baseline (best %s): **%s**"
+                        % (suite, fmt(got, "pct"), "met" if got is not None and got >= 0.95 else "not met",
+                           fmt(best, "pct"), "yes" if got is not None and got > best else "no"))
+    fp = get("clutter-only", "amcr", "fp_per_frame")
+    if fp is not None:
+        aims.append("- false positives per frame on `clutter-only` <= 0.05: **%.3f** (%s)"
+                    % (fp, "met" if fp <= 0.05 else "not met"))
+    errors = [everything[s]["amcr"]["affine_median"] for s in everything
+              if "amcr" in everything[s] and everything[s]["amcr"].get("affine_median") is not None]
+    if errors:
+        worst = max(errors)
+        aims.append("- median affine corner error < 3 px: **%.2f px** at worst over the suites (%s)"
+                    % (worst, "met" if worst < 3 else "not met"))
+    if updates:
+        aims.append("- relational-particle updates per second on one core >= 10 M: **%.2f M** at best (%s, the "
+                    "whole iteration counted) (%s)" % (updates[0] / 1e6, updates[1],
+                                                      "met" if updates[0] >= 1e7 else "not met"))
+    lines += ["", "The aims of issue 5 against these figures:", ""] + aims
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--header", default="", help="Markdown put at the top (machine, date, commit)")
+    args = parser.parse_args()
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        plt = None
+    os.makedirs(os.path.join(args.out, "plots"), exist_ok=True)
+
+    parts = ["# AMCR benchmark", "", args.header, "", "## Methods", "", METHODS_TEXT,
+             "## Suites", "", SUITES_TEXT]
+    everything = {}
+    found = [os.path.basename(d) for d in glob.glob(os.path.join(args.out, "results", "*"))]
+    for suite in [s for s in SUITES if s in found] + sorted(s for s in found if s not in SUITES):
+        metrics, has_target = suite_metrics(args.out, suite, METHODS)
+        if not metrics:
+            continue
+        everything[suite] = metrics
+        parts += ["## %s" % suite, "", suite_table(suite, metrics, has_target), ""]
+        if "amcr" in metrics and has_target and suite != "two-objects":
+            parts += [breakdown(args.out, suite), ""]
+        if plt and has_target:
+            plot_accuracy(plt, suite, metrics, os.path.join(args.out, "plots", "accuracy_%s.png" % suite))
+            parts += ["![%s](plots/accuracy_%s.png)" % (suite, suite), ""]
+    speed = speed_section(args.out, plt)
+    updates = best_updates(args.out)
+    parts[4:4] = [summary_section(everything, updates), ""]
+    parts += ["## Speed", "", speed, latency_section(args.out)]
+    if plt is None:
+        parts.append("(plots skipped: python3-matplotlib is not installed)")
+    with open(os.path.join(args.out, "report.md"), "w") as f:
+        f.write("\n".join(parts) + "\n")
+    # The short version: the run, the summary, the speed (for docs/benchmark-latest.md).
+    short = ["# AMCR benchmark: summary", "", args.header, "", summary_section(everything, updates), "",
+             "## Speed", "", speed.replace("plots/", "../.build/benchmark/plots/"), latency_section(args.out)]
+    with open(os.path.join(args.out, "summary.md"), "w") as f:
+        f.write("\n".join(short) + "\n")
+    with open(os.path.join(args.out, "metrics.json"), "w") as f:
+        json.dump(everything, f, indent=1, default=str)
+    print("report: %s" % os.path.join(args.out, "report.md"))
+
+
+if __name__ == "__main__":
+    main()
