@@ -48,19 +48,30 @@ int Recognizer::followFlow(const RadialScanner& scanner)
   // Each V-particle: with the motion of the track it lies on (which also
   // turns its heading with the object, so its M-particles' headings stay
   // right), else with the Lucas-Kanade flow at its own position; a
-  // V-particle whose flow fails is seeded afresh.
+  // V-particle whose flow fails is seeded afresh. Lucas-Kanade runs only for
+  // the V-particles that are not on a tracked object.
   flow_origins_.resize(v_.size());
+  std::vector<int> track_of(v_.size(), -1);
+  std::vector<cv::Point2f> free_points;
+  std::vector<std::size_t> free_index(v_.size(), 0);
   for (std::size_t i = 0; i < v_.size(); ++i)
+  {
     flow_origins_[i] = cv::Point2f(v_[i].x, v_[i].y);
-  const std::vector<FlowVector> flow = flow_.track(flow_origins_);
+    for (std::size_t k = 0; k < tracks.size() && track_of[i] < 0; ++k)
+      if (moved[k] && cv::pointPolygonTest(outlines[k], flow_origins_[i], false) >= 0)
+        track_of[i] = static_cast<int>(k);
+    if (track_of[i] < 0)
+    {
+      free_index[i] = free_points.size();
+      free_points.push_back(flow_origins_[i]);
+    }
+  }
+  const std::vector<FlowVector> flow = flow_.track(free_points);
   int failures = 0;
   for (std::size_t i = 0; i < v_.size(); ++i)
   {
     VParticle& v = v_[i];
-    int on = -1;
-    for (std::size_t k = 0; k < tracks.size() && on < 0; ++k)
-      if (moved[k] && cv::pointPolygonTest(outlines[k], flow_origins_[i], false) >= 0)
-        on = static_cast<int>(k);
+    const int on = track_of[i];
     if (on >= 0)
     {
       const Affine& m = motion[on];
@@ -69,10 +80,10 @@ int Recognizer::followFlow(const RadialScanner& scanner)
       v.y = static_cast<float>(std::min(std::max(to.y, 0.0), image_size_.height - 1.0));
       v.theta = static_cast<float>(wrapAngle(v.theta + std::atan2(m(1, 0), m(0, 0))));
     }
-    else if (flow[i].ok)
+    else if (flow[free_index[i]].ok)
     {
-      v.x = flow[i].to.x;
-      v.y = flow[i].to.y;
+      v.x = flow[free_index[i]].to.x;
+      v.y = flow[free_index[i]].to.y;
     }
     else
     {
