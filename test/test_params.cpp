@@ -212,6 +212,8 @@ TEST(Priors, ParseAndFormatRoundTrip)
   amcr::Params p;
   amcr::setParameter(p, "prototype_priors", std::string("bat: 3"));
   EXPECT_DOUBLE_EQ(p.prototype_priors.at("bat"), 3.0);
+  p.prototype_priors["apple"] = -1.0;  // set directly, as the ROS map parameter does
+  expectParameterError([&]() { p.validate(); }, "apple", "validate() of a negative prior");
 }
 
 TEST(Priors, MalformedEntriesNameTheParameterAndTheEntry)

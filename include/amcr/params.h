@@ -84,7 +84,8 @@ struct Params
 
   std::uint64_t seed = 0;  ///< seed of the recognizer's random generator
 
-  /// Throws ParameterError naming the first parameter out of range.
+  /// Throws ParameterError naming the first parameter out of range (or the
+  /// prototype_priors entry with a negative or non-finite weight).
   void validate() const;
 };
 

@@ -86,6 +86,15 @@ const NumericParameter* findNumeric(const std::string& name)
   return nullptr;
 }
 
+/// A prototype_priors entry: a label and a finite weight >= 0.
+void checkPrior(const std::string& label, double weight)
+{
+  if (label.empty())
+    throw ParameterError("parameter 'prototype_priors': an entry has no label");
+  if (!std::isfinite(weight) || weight < 0.0)
+    throw ParameterError("parameter 'prototype_priors': the weight of '" + label + "' must be a finite number >= 0");
+}
+
 std::string rangeText(const ParameterInfo& info)
 {
   std::ostringstream out;
@@ -108,6 +117,8 @@ void Params::validate() const
       throw ParameterError(out.str());
     }
   }
+  for (const auto& prior : prototype_priors)
+    checkPrior(prior.first, prior.second);
 }
 
 const std::vector<ParameterInfo>& parameterTable()
@@ -202,8 +213,7 @@ std::map<std::string, double> parsePriors(const std::string& text)
     }
     if (label.empty() || used == 0 || used != number.size())
       throw ParameterError("parameter 'prototype_priors': '" + trim(entry) + "' is not 'label: weight'");
-    if (!std::isfinite(weight) || weight < 0.0)
-      throw ParameterError("parameter 'prototype_priors': the weight of '" + label + "' must be a finite number >= 0");
+    checkPrior(label, weight);
     priors[label] = weight;
   }
   return priors;
@@ -212,6 +222,7 @@ std::map<std::string, double> parsePriors(const std::string& text)
 std::string formatPriors(const std::map<std::string, double>& priors)
 {
   std::ostringstream out;
+  out << std::setprecision(15);  // a decimal weight of up to 15 digits reads back unchanged
   for (auto it = priors.begin(); it != priors.end(); ++it)
     out << (it == priors.begin() ? "" : ", ") << it->first << ": " << it->second;
   return out.str();
@@ -247,14 +258,14 @@ Params loadParams(const std::string& yaml_path, Params params)
     {
       if (name == "prototype_priors" && node.isMap())
       {
-        std::ostringstream text;
+        params.prototype_priors.clear();
         for (const cv::FileNode& prior : node)
         {
           if (!prior.isInt() && !prior.isReal())
             throw ParameterError("parameter 'prototype_priors': the weight of '" + prior.name() + "' must be a number");
-          text << prior.name() << ": " << std::setprecision(17) << static_cast<double>(prior) << ",";
+          checkPrior(prior.name(), static_cast<double>(prior));
+          params.prototype_priors[prior.name()] = static_cast<double>(prior);
         }
-        params.prototype_priors = parsePriors(text.str());
       }
       else if (node.isString())
         setParameter(params, name, static_cast<std::string>(node));

@@ -15,8 +15,8 @@ namespace amcr
 namespace
 {
 constexpr int kMaxCopiesPerV = 3;         // copies one V-particle may get at a V-resampling
-constexpr int kVParticlesPerObject = 12;
-constexpr double kEstimateDecay = 0.9;    // per frame, of the frame budget's running cost estimates  // V-particles a recognized object keeps at full V-weight
+constexpr int kVParticlesPerObject = 12;  // V-particles a recognized object keeps at full V-weight
+constexpr double kEstimateDecay = 0.9;    // per frame, of the frame budget's running cost estimates
 constexpr float kMinSeedRayLength = 4.f;  // px: shorter rays at a seed place mean texture, not a region
 
 /// cos and sin of every direction bin.

@@ -89,8 +89,6 @@ int Recognizer::followFlow(const RadialScanner& scanner)
     {
       seedV(v, scanner);
       seedMRange(m_, i * per_v_, (i + 1) * per_v_, v.rays);
-      if (i < clusters_.size())
-        clusters_[i] = VParticleCluster();
       ++failures;
     }
   }

@@ -65,13 +65,14 @@ amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::stri
   // ~prototype_priors: a map {label: weight} or the string "label: weight, ...".
   if (private_nh.hasParam("prototype_priors"))
   {
-    std::map<std::string, double> priors;
+    std::map<std::string, double> priors;  // checked by params.validate() below
     std::string text;
     if (private_nh.getParam("prototype_priors", priors))
-      text = amcr::formatPriors(priors);
-    else if (!private_nh.getParam("prototype_priors", text))
+      params.prototype_priors = priors;
+    else if (private_nh.getParam("prototype_priors", text))
+      amcr::setParameter(params, "prototype_priors", text);
+    else
       throw amcr::ParameterError("~prototype_priors must be a map {label: weight} or a string 'label: weight, ...'");
-    amcr::setParameter(params, "prototype_priors", text);
     if (notes)
       notes->push_back("prototype_priors = " + amcr::formatPriors(params.prototype_priors));
   }
