@@ -477,7 +477,10 @@ def main():
         f.write("\n".join(parts) + "\n")
     # The short version: the run, the summary, the speed (for docs/benchmark-latest.md).
     short = ["# AMCR benchmark: summary", "", args.header, "", summary_section(everything, updates), "",
-             "## Speed", "", speed.replace("plots/", "../.build/benchmark/plots/"), latency_section(args.out)]
+             "## Speed", "", speed.replace(
+                 "![time per iteration](plots/time_per_iteration.png)",
+                 "The plot of time per iteration against particle count is `plots/time_per_iteration.png`"
+                 " in the run's output folder (not in the repository)."), latency_section(args.out)]
     with open(os.path.join(args.out, "summary.md"), "w") as f:
         f.write("\n".join(short) + "\n")
     with open(os.path.join(args.out, "metrics.json"), "w") as f:
