@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "amcr/outline_fit.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "scene_drawing.h"
@@ -152,6 +153,31 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<Target>& info) {
       return amcr_test::shapeName(info.param.shape) + "_" + std::to_string(info.param.clutter_seed);
     });
+
+// min_object_size: the arrow that EndToEnd.ThreePrototypes/arrow_101 finds
+// (about 120-150 px across) is never reported, nor is anything else, when the
+// smallest reported size is larger than it.
+TEST(EndToEndSize, ObjectsSmallerThanTheMinimumAreNotReported)
+{
+  const Target t{ShapeId::kArrow, {330, 250}, 35 * M_PI / 180, 0.85, 0.75, 0.25, 101};
+  amcr_test::Scene scene;
+  scene.objects.push_back(
+      {t.shape, amcr_test::makeAffine(amcr_test::prototypeCentre(), t.centre, t.rotation, t.scale_x, t.scale_y, t.shear)});
+  scene.clutter = clutter(t.clutter_seed);
+  const std::vector<cv::Mat> frames = amcr_test::renderSequence(scene, kMaxIterations);
+  amcr::Params p = params();
+  p.min_object_size = 250.0;
+  amcr::Recognizer recognizer(p, memory());
+  int reports = 0;
+  double largest = 0.0;
+  for (int k = 0; k < kMaxIterations; ++k)
+    for (const amcr::RecognizedObject& o : recognizer.step(frames[k]).objects)
+    {
+      ++reports;
+      largest = std::max(largest, amcr::outlineSize(o.outline));
+    }
+  EXPECT_EQ(reports, 0) << "objects below min_object_size were reported (largest " << largest << " px)";
+}
 
 // Clutter only: random shapes, the two silhouettes that are not in memory,
 // lines, gradient, noise. Nothing may be reported.

@@ -2,6 +2,8 @@
 // the prototype's whole outline, mapped into the input, must lie on edges.
 #pragma once
 
+#include <vector>
+
 #include "amcr/affine.h"
 #include "amcr/prototype.h"
 #include "amcr/radial_scan.h"
@@ -21,4 +23,8 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
 /// the outline shows. Points mapped outside the image count as missing.
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
                       double tolerance);
+
+/// Size of an outline in the image: the longer side, in px, of the smallest
+/// (rotated) rectangle around its points; 0 for fewer than 2 points.
+double outlineSize(const std::vector<cv::Point2d>& outline);
 }  // namespace amcr

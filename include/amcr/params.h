@@ -69,6 +69,7 @@ struct Params
   int refine_iterations = 5;          ///< outline-to-edge refinement passes of the affine [0, 100]
   double refine_search = 6.0;         ///< search along the outline normal for an edge, input px [0, 100]
   double decision_threshold = 0.75;   ///< smallest score reported [0, 1]
+  double min_object_size = 64.0;      ///< smallest object reported: longer side of its outline's box, input px [0, 4000]
 
   // Tracking (spec "Tracking") and the time per frame.
   bool optical_flow = true;        ///< V-particles ride pyramidal Lucas-Kanade flow between frames

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace amcr
 {
@@ -213,5 +214,14 @@ double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, 
     found += nearestEdge(NormalProfile(scanner, p, tolerance), scanner.threshold(), sign, offset) ? 1 : 0;
   }
   return static_cast<double>(found) / static_cast<double>(prototype.outline().size());
+}
+
+double outlineSize(const std::vector<cv::Point2d>& outline)
+{
+  if (outline.size() < 2)
+    return 0.0;
+  const std::vector<cv::Point2f> points(outline.begin(), outline.end());
+  const cv::RotatedRect box = cv::minAreaRect(points);
+  return std::max(box.size.width, box.size.height);
 }
 }  // namespace amcr

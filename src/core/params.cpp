@@ -66,6 +66,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_INT(refine_iterations, "", 0, 100, "outline-to-edge refinement passes of the affine"),
       AMCR_DOUBLE(refine_search, "px", 0, 100, "search along the outline normal for an edge"),
       AMCR_DOUBLE(decision_threshold, "", 0, 1, "smallest score reported"),
+      AMCR_DOUBLE(min_object_size, "px", 0, 4000, "smallest object reported: longer side of the smallest rectangle around its outline"),
       AMCR_INT(optical_flow, "", 0, 1, "1: V-particles ride the pyramidal Lucas-Kanade flow between frames"),
       AMCR_INT(flow_window, "px", 5, 101, "side of the Lucas-Kanade window"),
       AMCR_INT(flow_levels, "", 0, 8, "pyramid levels of the optical flow above the frame"),

@@ -44,6 +44,11 @@ bool Recognizer::describeObject(int prototype, const Affine& table_to_image, con
   object = RecognizedObject();
   object.label = p.label();
   object.prototype_id = prototype;
+  for (const auto& o : p.outline())
+    object.outline.push_back(applyAffine(table_to_image, cv::Point2d(o.position)));
+  // Too small to tell shapes apart: neither reported nor fed back to attention.
+  if (outlineSize(object.outline) < params_.min_object_size)
+    return false;
   object.score = outlineSupport(p, scanner, table_to_image, kVerifyTolerance);
   object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
   object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
@@ -60,8 +65,6 @@ bool Recognizer::describeObject(int prototype, const Affine& table_to_image, con
     object.v_particles.push_back(c.v);
   }
   object.support = static_cast<int>(object.correspondences.size());
-  for (const auto& o : p.outline())
-    object.outline.push_back(applyAffine(table_to_image, cv::Point2d(o.position)));
   return true;
 }
 

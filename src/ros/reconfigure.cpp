@@ -10,7 +10,7 @@ namespace amcr_ros
   X(motion_noise_translation) X(motion_noise_rotation) X(reflection_jitter) X(v_resample_interval)             \
   X(v_reseed_fraction) X(m_reseed_fraction) X(injection_fraction) X(seed_enclosure_rays) X(seed_attempts)      \
   X(cluster_radius) X(cluster_min_share) X(group_tolerance) X(min_support) X(refine_iterations)                \
-  X(refine_search) X(decision_threshold) X(optical_flow) X(flow_window) X(flow_levels)        \
+  X(refine_search) X(decision_threshold) X(min_object_size) X(optical_flow) X(flow_window) X(flow_levels) \
   X(flow_max_error) X(frame_budget_ms) X(seed)
 
 amcr::AMCRConfig toConfig(const amcr::Params& params)
