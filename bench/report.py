@@ -320,7 +320,7 @@ core each (OpenCV threads off), and reports labels with a prototype->image affin
   on clean rotated copies and one cluttered frame: lower ones take tens of seconds per prototype on
   clutter), reported with position votes of at least 0.03 of the edge points, ranked by votes per
   edge point; a similarity only (no shear, no anisotropic scale). It is slow on clutter, from
-  0.3 s to minutes per prototype and polarity (one `paper` frame took 3 to 9 minutes with 17
+  0.3 s to minutes per prototype and polarity (one `paper` frame took 3 to 16 minutes with 17
   prototypes), so the full run gives it the last frame of every `similar` sequence (3 prototypes)
   and of one `paper` sequence only (the "frames run" row), and none of the other suites. It keeps
   no state from frame to frame, so a frame says what it does on any frame, but the sample is small:
