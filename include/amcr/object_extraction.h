@@ -21,11 +21,21 @@ struct VParticleCluster
   bool has_affine = false;
 };
 
+/// Whether a cluster is focused enough to stand for its V-particle's
+/// interpretation: it holds at least `min_share` (params.cluster_min_share)
+/// of the V-particle's M-particles. The one test of "converged" everywhere.
+inline bool isConverged(const VParticleCluster& cluster, double min_share) { return cluster.share >= min_share; }
+
 /// Finds the densest cluster among M-particles [begin, end): the prototype
 /// holding most of them, then a mean shift of `radius` table px started at
 /// the most likely particle there.
 VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
                                  double radius);
+
+/// The dominant cluster of every V-particle (index = V index) of `v` with
+/// `per_v` M-particles each in `m`.
+std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, const MParticleSet& m, int per_v,
+                                               int prototype_count, double radius);
 
 /// V-particles that agree on one object: the same prototype and affines that
 /// map each other's correspondences within `group_tolerance` input px.

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "amcr/radial_scan.h"
 #include "amcr/ray_directions.h"
 
 namespace amcr
@@ -18,6 +19,13 @@ struct RaySignature
   float distance[kFeatureRays] = {0, 0, 0, 0, 0, 0, 0, 0};
   int valid_rays() const;
 };
+
+/// Scans the 8 feature rays of the pose (x, y, theta): theta + k * 45 deg.
+void scanFeatureRays(const RadialScanner& scanner, float x, float y, float theta, RayHit hits[kFeatureRays]);
+
+/// The signature of scanned feature rays: each valid hit's distance (at
+/// least 1e-3 px), 0 for a ray that met no edge.
+RaySignature raySignature(const RayHit hits[kFeatureRays]);
 
 /// A V-particle: a pose in the input image plus its evidence record.
 struct VParticle
@@ -31,6 +39,21 @@ struct VParticle
   int evidence_count = 0;
   int age = 0;  ///< iterations since this V-particle was seeded
   RaySignature rays;  ///< the last measurement
+};
+
+/// Where the optical flow takes one V-particle into the current frame.
+struct VParticleMove
+{
+  enum class Kind
+  {
+    kWithTrack,  ///< moved with the track it lies on: position and heading
+    kWithFlow,   ///< moved by the Lucas-Kanade flow at its position: position only
+    kLost,       ///< its flow failed: it is seeded afresh
+  };
+  Kind kind = Kind::kLost;
+  float x = 0.f;      ///< input px of the current frame (not kLost)
+  float y = 0.f;
+  float theta = 0.f;  ///< rad (kWithTrack only)
 };
 
 /// All M-particles of all V-particles.

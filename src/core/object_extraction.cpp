@@ -8,26 +8,25 @@
 
 namespace amcr
 {
-VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
-                                 double radius)
+namespace
 {
-  VParticleCluster cluster;
-  if (end <= begin || prototype_count <= 0)
-    return cluster;
-  std::vector<int> counts(prototype_count, 0);
-  for (std::size_t i = begin; i < end; ++i)
-    ++counts[m.prototype[i]];
-  const int k = static_cast<int>(std::max_element(counts.begin(), counts.end()) - counts.begin());
+constexpr int kMeanShiftPasses = 5;           // most mean-shift steps of a cluster's centre
+constexpr float kMeanShiftSettled = 0.05f;    // table px: a step shorter than this ends the mean shift
 
-  // Start at the most likely particle of the prototype, then mean-shift.
-  std::size_t start = end;
-  for (std::size_t i = begin; i < end; ++i)
-    if (m.prototype[i] == k && (start == end || m.log_likelihood[i] > m.log_likelihood[start]))
-      start = i;
-  cv::Point2f centre(m.x[start], m.y[start]);
-  const float r2 = static_cast<float>(radius * radius);
-  int members = 0;
-  for (int pass = 0; pass < 5; ++pass)
+// estimateAffine2D of a group's correspondences (RANSAC; the threshold is
+// params.group_tolerance, input px).
+constexpr std::size_t kRansacMaxIterations = 2000;
+constexpr double kRansacConfidence = 0.99;
+constexpr std::size_t kRansacRefineIterations = 10;  // Levenberg-Marquardt steps on the inliers
+
+/// Mean shift over the M-particles [begin, end) of prototype k, from `centre`,
+/// with a disc of squared radius `r2` (table px^2); `members` gets the count
+/// in the last disc.
+cv::Point2f meanShift(const MParticleSet& m, std::size_t begin, std::size_t end, int k, cv::Point2f centre, float r2,
+                      int& members)
+{
+  members = 0;
+  for (int pass = 0; pass < kMeanShiftPasses; ++pass)
   {
     cv::Point2f sum(0, 0);
     members = 0;
@@ -45,11 +44,34 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
     if (members == 0)
       break;
     const cv::Point2f next = sum / static_cast<float>(members);
-    const bool settled = std::hypot(next.x - centre.x, next.y - centre.y) < 0.05f;
+    const bool settled = std::hypot(next.x - centre.x, next.y - centre.y) < kMeanShiftSettled;
     centre = next;
     if (settled)
       break;
   }
+  return centre;
+}
+}  // namespace
+
+VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
+                                 double radius)
+{
+  VParticleCluster cluster;
+  if (end <= begin || prototype_count <= 0)
+    return cluster;
+  std::vector<int> counts(prototype_count, 0);
+  for (std::size_t i = begin; i < end; ++i)
+    ++counts[m.prototype[i]];
+  const int k = static_cast<int>(std::max_element(counts.begin(), counts.end()) - counts.begin());
+
+  // Start at the most likely particle of the prototype, then mean-shift.
+  std::size_t start = end;
+  for (std::size_t i = begin; i < end; ++i)
+    if (m.prototype[i] == k && (start == end || m.log_likelihood[i] > m.log_likelihood[start]))
+      start = i;
+  const float r2 = static_cast<float>(radius * radius);
+  int members = 0;
+  const cv::Point2f centre = meanShift(m, begin, end, k, cv::Point2f(m.x[start], m.y[start]), r2, members);
   double a[6] = {0, 0, 0, 0, 0, 0};
   int with_affine = 0;
   for (std::size_t i = begin; i < end; ++i)
@@ -70,6 +92,19 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
     cluster.has_affine = true;
   }
   return cluster;
+}
+
+std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, const MParticleSet& m, int per_v,
+                                               int prototype_count, double radius)
+{
+  std::vector<VParticleCluster> clusters(v.size());
+  const std::size_t n = static_cast<std::size_t>(per_v);
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    clusters[i] = dominantCluster(m, i * n, (i + 1) * n, prototype_count, radius);
+    clusters[i].v = static_cast<int>(i);
+  }
+  return clusters;
 }
 
 namespace
@@ -105,7 +140,7 @@ std::vector<ObjectHypothesis> groupClusters(const std::vector<VParticle>& v,
 {
   std::vector<int> order;
   for (std::size_t i = 0; i < clusters.size(); ++i)
-    if (clusters[i].has_affine && clusters[i].share >= params.cluster_min_share)
+    if (clusters[i].has_affine && isConverged(clusters[i], params.cluster_min_share))
       order.push_back(static_cast<int>(i));
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return clusters[a].share > clusters[b].share; });
@@ -147,7 +182,8 @@ std::vector<ObjectHypothesis> groupClusters(const std::vector<VParticle>& v,
     if (wellSpread(table_points, 2.0 * params.cluster_radius))
     {
       const cv::Mat fitted = cv::estimateAffine2D(table_points, image_points, cv::noArray(), cv::RANSAC,
-                                                  params.group_tolerance, 2000, 0.99, 10);
+                                                  params.group_tolerance, kRansacMaxIterations, kRansacConfidence,
+                                                  kRansacRefineIterations);
       if (!fitted.empty())
         h.table_to_image = Affine(fitted.ptr<double>(0)[0], fitted.ptr<double>(0)[1], fitted.ptr<double>(0)[2],
                                   fitted.ptr<double>(1)[0], fitted.ptr<double>(1)[1], fitted.ptr<double>(1)[2]);

@@ -4,6 +4,20 @@
 
 namespace amcr
 {
+void scanFeatureRays(const RadialScanner& scanner, float x, float y, float theta, RayHit hits[kFeatureRays])
+{
+  for (int k = 0; k < kFeatureRays; ++k)
+    hits[k] = scanner.scanAngle(x, y, theta + k * kFeatureBinStep * kBinAngle);
+}
+
+RaySignature raySignature(const RayHit hits[kFeatureRays])
+{
+  RaySignature rays;
+  for (int k = 0; k < kFeatureRays; ++k)
+    rays.distance[k] = hits[k].valid ? std::max(hits[k].distance, 1e-3f) : 0.f;
+  return rays;
+}
+
 int RaySignature::valid_rays() const
 {
   int n = 0;

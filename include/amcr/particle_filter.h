@@ -1,0 +1,145 @@
+// The particle filter of Radial-AMCR (paper 3.6, spec "State"): V-particles
+// in the input image, each with its M-particles in the prototypes (the map
+// R^-1(v)); seeding, one V-particle's iteration (motion, measurement,
+// M-resampling with the injection of leading hypotheses) and V-resampling
+// with attention feedback. It owns the one seeded random generator: every
+// draw of a recognizer is made here, in a fixed order.
+//
+// What it learns from the result extraction comes in explicitly: evidence
+// per V-particle (addEvidence), the leading hypotheses to inject (setLeading)
+// and the V-particles of each reported object (resampleV).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "amcr/affine.h"
+#include "amcr/exploration_policy.h"
+#include "amcr/motion_model.h"
+#include "amcr/observation_model.h"
+#include "amcr/params.h"
+#include "amcr/particles.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/prototype_prior.h"
+#include "amcr/radial_scan.h"
+#include "amcr/random.h"
+
+namespace amcr
+{
+/// A leading hypothesis of the result extraction: a prototype at an
+/// image -> table affine, whose implied poses are injected as M-particles.
+struct LeadingHypothesis
+{
+  int prototype = -1;
+  Affine image_to_table;
+};
+
+/// Log V-weight that the verification of a V-particle's interpretation adds
+/// to its evidence (paper 4.3, attention feedback).
+struct EvidenceBonus
+{
+  int v = -1;  ///< index of the V-particle
+  double log_weight = 0.0;
+};
+
+class ParticleFilter
+{
+public:
+  /// Takes validated `params` and a memory with at least one prototype
+  /// (MemoryError otherwise); ParameterError from the prior (PrototypePrior).
+  /// The filter is empty until seed().
+  ParticleFilter(const Params& params, std::shared_ptr<const PrototypeMemory> memory);
+
+  /// Replaces the exploration policy F (ParameterError when null).
+  void setPolicy(std::unique_ptr<ExplorationPolicy> policy);
+
+  /// Swaps the memory (as the constructor checks it) and empties the filter.
+  /// On an error the filter keeps its memory.
+  void setMemory(std::shared_ptr<const PrototypeMemory> memory);
+
+  /// Empties the filter and re-seeds the generator with params.seed.
+  void reset();
+
+  /// Whether seed() must run before an update on an image of `size`: the
+  /// filter is empty, or it was seeded on an image of another size.
+  bool needsSeeding(const cv::Size& size) const { return v_.empty() || size != image_size_; }
+
+  /// Seeds params.num_v_particles V-particles and their M-particles on the
+  /// scanner's image; forgets the leading hypotheses.
+  void seed(const RadialScanner& scanner);
+
+  /// One V-particle's iteration (paper 3.6): its control from the policy, the
+  /// motion of it and its M-particles, its measurement and the update of its
+  /// M-particles (eqs. 5-6), its evidence, and the M-resampling.
+  void update(int v_index, const RadialScanner& scanner);
+
+  /// Adds the verification's evidence to the V-particles it names.
+  void addEvidence(const std::vector<EvidenceBonus>& evidence);
+
+  /// The hypotheses whose poses the following M-resamplings inject.
+  void setLeading(std::vector<LeadingHypothesis> leading);
+
+  /// V-resampling (paper 3.6, every w iterations): draws V-particles by their
+  /// evidence, with the weight of each reported object's V-particles
+  /// (`object_v_particles`, V indices) shared beyond a number per object.
+  /// Returns the ancestry: for each new V-particle the index of the one it
+  /// copies, or -1 when it was seeded afresh.
+  std::vector<int> resampleV(const RadialScanner& scanner, const std::vector<std::vector<int>>& object_v_particles);
+
+  /// Moves the V-particles by the optical flow (one move per V-particle, in
+  /// index order); a lost one is seeded afresh with new M-particles. Returns
+  /// how many were lost.
+  int applyFlow(const std::vector<VParticleMove>& moves, const RadialScanner& scanner);
+
+  /// Moves every V-particle by an external displacement, kept inside the
+  /// image; its M-particles stay where they are. InputError for a count
+  /// other than the V-particles' or a displacement that is not finite.
+  void displace(const std::vector<cv::Point2f>& displacement);
+
+  const Params& params() const { return params_; }
+  const PrototypeMemory& memory() const { return *memory_; }
+  const std::vector<VParticle>& vParticles() const { return v_; }
+  const MParticleSet& mParticles() const { return m_; }
+  /// M-particles per V-particle: those of V-particle v are [v * perV(), (v + 1) * perV()).
+  int mParticlesPerV() const { return static_cast<int>(prior_.slots().size()); }
+  /// The prototype of each of a V-particle's M-particle slots at seeding.
+  const std::vector<int>& priorSlots() const { return prior_.slots(); }
+  /// The size of the image the filter was seeded on.
+  const cv::Size& imageSize() const { return image_size_; }
+
+private:
+  void seedV(VParticle& v, const RadialScanner& scanner);
+  void seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const RaySignature& rays);
+  void seedM(MParticleSet& set, std::size_t index, int prototype, const RaySignature& rays);
+  /// Scans the V-particle's rays (refreshing v.rays) and updates its
+  /// M-particles by eqs. 5-6 (particle_filter_measurement.cpp).
+  void measure(int v_index, const RadialScanner& scanner);
+  /// The relational update of M-particles [begin, end) of `v` from its ray
+  /// distances (8 feature rays, then the 2 further triangle rays).
+  void measureRelational(const VParticle& v, const float* v_dist, const bool* v_valid, std::size_t begin,
+                         std::size_t end);
+  void accumulateEvidence(int v_index);
+  void resampleM(int v_index);
+  /// Places M-particle `index` of m_scratch_ at the pose leading hypothesis
+  /// `h` implies for V-particle `v`, with likelihood `worst`.
+  void injectM(const VParticle& v, const LeadingHypothesis& h, std::size_t index, float worst);
+  std::vector<double> attentionWeights(const std::vector<std::vector<int>>& object_v_particles) const;
+
+  Params params_;
+  std::shared_ptr<const PrototypeMemory> memory_;
+  PrototypePrior prior_;
+  std::unique_ptr<ExplorationPolicy> policy_;
+  ObservationModel observation_;
+  MotionModel motion_;
+  Rng rng_;
+
+  cv::Size image_size_;
+  std::vector<VParticle> v_;
+  MParticleSet m_;
+  MParticleSet m_scratch_;
+  std::vector<double> weight_scratch_;
+  std::vector<LeadingHypothesis> leading_;  // injected at the M-resamplings
+};
+}  // namespace amcr

@@ -1,0 +1,35 @@
+// The context prior over prototypes (params.prototype_priors): how the
+// M-particle slots of a V-particle are shared among the prototypes at
+// seeding, and the prototype of an M-particle re-seeded at M-resampling.
+#pragma once
+
+#include <vector>
+
+#include "amcr/params.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/random.h"
+
+namespace amcr
+{
+class PrototypePrior
+{
+public:
+  /// Reads params.prototype_priors (a label's weight, 1 for a label not
+  /// named) and params.m_particles_per_prototype. ParameterError for a label
+  /// the memory does not have, or when every weight is 0.
+  PrototypePrior(const PrototypeMemory& memory, const Params& params);
+
+  /// The prototype of each of a V-particle's M-particle slots:
+  /// m_particles_per_prototype per prototype of non-zero weight, shared in
+  /// proportion to the weights.
+  const std::vector<int>& slots() const { return slots_; }
+
+  /// A prototype drawn from the prior (one draw of `rng`).
+  int draw(Rng& rng) const;
+
+private:
+  std::vector<int> slots_;
+  std::vector<int> active_;    // prototypes of non-zero weight
+  std::vector<double> cdf_;    // cumulative prior over active_; empty when uniform
+};
+}  // namespace amcr

@@ -1,0 +1,244 @@
+// Result extraction (spec "Output"): from clusters and groups to objects
+// fitted and verified on the image, and the feedback the verification gives
+// to attention (V-resampling) and to the M-particles (injection).
+#include "amcr/object_extractor.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "amcr/outline_fit.h"
+
+namespace amcr
+{
+namespace
+{
+constexpr double kVerifyTolerance = 2.0;           // px along the normal within which an outline point finds its edge
+constexpr int kMaxLeadingHypotheses = 3;           // hypotheses whose poses are injected as M-particles
+constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
+constexpr double kKeepTrackRatio = 0.65;           // a tracked object stays at this share of the decision threshold
+constexpr double kTrackDistance = 40.0;            // px an object's centre may move between frames and keep its track
+constexpr double kVerificationGain = 4.0;          // log-weight per unit of outline score above 0.5 (V-resampling)
+constexpr double kSameObjectOverlap = 0.5;         // outlines overlapping more are one object: the better is kept
+constexpr double kLeadingScoreRatio = 0.5;         // a leading hypothesis scores at least this share of the threshold
+
+/// An object verified on the image, with the V-particles that support it.
+struct Candidate
+{
+  RecognizedObject object;
+  std::vector<int> v_particles;  // V indices, one per correspondence
+};
+
+/// Where the fit of one prototype starts: a group's affine and the affines
+/// of the previous frame's objects near it (table -> image).
+struct FitStart
+{
+  int prototype;
+  std::vector<Affine> affines;
+};
+
+/// What every step of the extraction reads.
+struct ExtractionInput
+{
+  const ParticleFilter& filter;
+  const RadialScanner& scanner;
+  const std::vector<VParticleCluster>& clusters;
+  const Params& params;
+  const PrototypeMemory& memory;
+};
+
+/// A candidate for a prototype at a table -> image affine (score, support,
+/// correspondences, outline); false when the affine is out of bounds or the
+/// object too small.
+bool describeObject(const ExtractionInput& in, int prototype, const Affine& table_to_image, Candidate& candidate)
+{
+  const Prototype& p = in.memory[prototype];
+  double smallest = 0, largest = 0;
+  affineScales(table_to_image, smallest, largest);
+  Affine image_to_table;
+  if (largest > in.params.max_affine_scale || smallest < 1.0 / in.params.max_affine_scale ||
+      !invertAffine(table_to_image, image_to_table))
+    return false;
+  candidate = Candidate();
+  RecognizedObject& object = candidate.object;
+  object.label = p.label();
+  object.prototype_id = prototype;
+  for (const auto& o : p.outline())
+    object.outline.push_back(applyAffine(table_to_image, cv::Point2d(o.position)));
+  // Too small to tell shapes apart: neither reported nor fed back to attention.
+  if (outlineSize(object.outline) < in.params.min_object_size)
+    return false;
+  object.score = outlineSupport(p, in.scanner, table_to_image, kVerifyTolerance);
+  object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
+  object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
+  // Support: the converged V-particles whose cluster this affine explains.
+  const std::vector<VParticle>& v = in.filter.vParticles();
+  for (const VParticleCluster& c : in.clusters)
+  {
+    if (c.prototype != prototype || !isConverged(c, in.params.cluster_min_share))
+      continue;
+    const cv::Point2d image_point(v[c.v].x, v[c.v].y);
+    const cv::Point2d predicted = applyAffine(table_to_image, cv::Point2d(c.mean));
+    if (std::hypot(predicted.x - image_point.x, predicted.y - image_point.y) > in.params.group_tolerance)
+      continue;
+    object.correspondences.push_back({image_point, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean))});
+    candidate.v_particles.push_back(c.v);
+  }
+  object.support = static_cast<int>(object.correspondences.size());
+  return true;
+}
+
+// Starting points of the fit: each group's affine, and each object of the
+// previous frame (recognition and tracking run together: a pose, once
+// fitted, is moved by the flow and refined on, not found again). A group near
+// a previous object of its prototype tries both and keeps the better fit.
+std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& registry)
+{
+  // Every group is verified, even a single V-particle's: one that passes
+  // seeds the others through injection before it has the support to be reported.
+  std::vector<ObjectHypothesis> hypotheses = groupClusters(in.filter.vParticles(), in.clusters, in.params, 1);
+  if (hypotheses.size() > kMaxVerifiedHypotheses)
+    hypotheses.resize(kMaxVerifiedHypotheses);
+
+  std::vector<FitStart> starts;
+  const std::vector<Track>& tracks = registry.tracks();
+  std::vector<Affine> track_affines;  // each track's table -> image affine, moved by the flow
+  for (const Track& t : tracks)
+    track_affines.push_back(composeAffine(in.memory[t.prototype_id].tableToOriginal(), t.prototype_to_image));
+  std::vector<bool> track_used(tracks.size(), false);
+  for (const auto& h : hypotheses)
+  {
+    FitStart start{h.prototype, {h.table_to_image}};
+    const cv::Point2d centre = applyAffine(h.table_to_image, in.memory[h.prototype].centre());
+    for (std::size_t k = 0; k < tracks.size(); ++k)
+    {
+      const cv::Point2d track_centre = applyAffine(track_affines[k], in.memory[h.prototype].centre());
+      if (tracks[k].prototype_id == h.prototype &&
+          std::hypot(centre.x - track_centre.x, centre.y - track_centre.y) <= kTrackDistance)
+      {
+        start.affines.push_back(track_affines[k]);
+        track_used[k] = true;
+      }
+    }
+    starts.push_back(std::move(start));
+  }
+  for (std::size_t k = 0; k < tracks.size(); ++k)
+    if (!track_used[k])
+      starts.push_back({tracks[k].prototype_id, {track_affines[k]}});
+  return starts;
+}
+
+/// Each start refined on the image's edges and verified; of a start's
+/// affines the best fit. Best score first (stable).
+std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vector<FitStart>& starts)
+{
+  std::vector<Candidate> candidates;
+  for (const auto& start : starts)
+  {
+    const Prototype& p = in.memory[start.prototype];
+    Candidate best;
+    bool found = false;
+    for (const Affine& affine : start.affines)
+    {
+      Candidate candidate;
+      const Affine refined = refineOnEdges(p, in.scanner, affine, in.params.refine_iterations, in.params.refine_search);
+      if (describeObject(in, start.prototype, refined, candidate) && (!found || candidate.object.score > best.object.score))
+      {
+        best = std::move(candidate);
+        found = true;
+      }
+    }
+    if (found)
+      candidates.push_back(std::move(best));
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.object.score > b.object.score; });
+  return candidates;
+}
+
+// Attention feedback from the verification: a converged V-particle whose
+// interpretation the whole outline confirms gains V-weight, one whose
+// interpretation the image contradicts loses it (the paper's V-weight,
+// "V-particles on clutter die out", made explicit).
+std::vector<EvidenceBonus> verificationEvidence(const ExtractionInput& in, const std::vector<Candidate>& candidates)
+{
+  std::vector<EvidenceBonus> evidence;
+  const std::vector<VParticle>& v = in.filter.vParticles();
+  for (const VParticleCluster& c : in.clusters)
+  {
+    if (!isConverged(c, in.params.cluster_min_share))
+      continue;
+    double best = -1.0;
+    for (const Candidate& candidate : candidates)
+    {
+      const RecognizedObject& object = candidate.object;
+      if (object.prototype_id != c.prototype || object.score <= best)
+        continue;
+      const Prototype& p = in.memory[c.prototype];
+      const cv::Point2d predicted = applyAffine(object.prototype_to_image, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean)));
+      if (std::hypot(predicted.x - v[c.v].x, predicted.y - v[c.v].y) <= in.params.group_tolerance)
+        best = object.score;
+    }
+    if (best >= 0.0)
+      evidence.push_back({c.v, kVerificationGain * (best - 0.5)});
+  }
+  return evidence;
+}
+
+/// The leading hypotheses seed M-particles at the next iteration, reported or not.
+std::vector<LeadingHypothesis> leadingHypotheses(const ExtractionInput& in, const std::vector<Candidate>& candidates)
+{
+  std::vector<LeadingHypothesis> leading;
+  for (const auto& candidate : candidates)
+  {
+    const RecognizedObject& c = candidate.object;
+    if (static_cast<int>(leading.size()) >= kMaxLeadingHypotheses ||
+        c.score < kLeadingScoreRatio * in.params.decision_threshold)
+      break;
+    const Prototype& p = in.memory[c.prototype_id];
+    leading.push_back({c.prototype_id, composeAffine(c.image_to_prototype, p.originalToTable())});
+  }
+  return leading;
+}
+
+/// Reports what passes the decision threshold; of two overlapping objects the better one.
+void report(const Params& params, const TrackRegistry& registry, std::vector<Candidate>& candidates,
+            Extraction& extraction)
+{
+  for (auto& candidate : candidates)
+  {
+    const RecognizedObject& c = candidate.object;
+    // Hysteresis: an object recognized in the previous frame stays while its
+    // score keeps above a share of the threshold and one V-particle supports it.
+    const bool tracked = registry.continues(c);
+    const double threshold = params.decision_threshold * (tracked ? kKeepTrackRatio : 1.0);
+    if (c.score < threshold || c.support < (tracked ? 1 : params.min_support))
+      continue;
+    bool suppressed = false;
+    for (const auto& kept : extraction.objects)
+      suppressed = suppressed || outlineOverlap(c.outline, kept.outline) > kSameObjectOverlap;
+    if (suppressed)
+      continue;
+    extraction.objects.push_back(std::move(candidate.object));
+    extraction.feedback.object_v_particles.push_back(std::move(candidate.v_particles));
+  }
+}
+}  // namespace
+
+std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter)
+{
+  return dominantClusters(filter.vParticles(), filter.mParticles(), filter.mParticlesPerV(),
+                          static_cast<int>(filter.memory().size()), filter.params().cluster_radius);
+}
+
+Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks)
+{
+  Extraction extraction;
+  extraction.clusters = filterClusters(filter);
+  const ExtractionInput in{filter, scanner, extraction.clusters, filter.params(), filter.memory()};
+  std::vector<Candidate> candidates = fitCandidates(in, fitStarts(in, tracks));
+  extraction.feedback.evidence = verificationEvidence(in, candidates);
+  extraction.feedback.leading = leadingHypotheses(in, candidates);
+  report(in.params, tracks, candidates, extraction);
+  return extraction;
+}
+}  // namespace amcr

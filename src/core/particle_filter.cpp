@@ -1,0 +1,236 @@
+// The particle filter: set-up, seeding, one V-particle's iteration, the
+// evidence and the moves from outside (optical flow). The measurement is in
+// particle_filter_measurement.cpp, the resampling in
+// particle_filter_resampling.cpp.
+#include "amcr/particle_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "amcr/errors.h"
+#include "amcr/heading_proposal.h"
+#include "amcr/ray_directions.h"
+
+namespace amcr
+{
+namespace
+{
+constexpr float kMinSeedRayLength = 4.f;  // px: shorter rays at a seed place mean texture, not a region
+
+std::shared_ptr<const PrototypeMemory> checkedMemory(std::shared_ptr<const PrototypeMemory> memory)
+{
+  if (!memory || memory->empty())
+    throw MemoryError("the recognizer needs a prototype memory with at least one prototype");
+  return memory;
+}
+}  // namespace
+
+ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const PrototypeMemory> memory)
+  : params_(params)
+  , memory_(checkedMemory(std::move(memory)))
+  , prior_(*memory_, params_)
+  , policy_(std::make_unique<ReflectAtEdgesPolicy>(params.v_step, params.reflection_jitter))
+  , observation_(params)
+  , motion_(params)
+  , rng_(params.seed)
+{
+}
+
+void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
+{
+  if (!policy)
+    throw ParameterError("the exploration policy must not be null");
+  policy_ = std::move(policy);
+}
+
+void ParticleFilter::setMemory(std::shared_ptr<const PrototypeMemory> memory)
+{
+  memory = checkedMemory(std::move(memory));
+  PrototypePrior prior(*memory, params_);
+  memory_ = std::move(memory);
+  prior_ = std::move(prior);
+  reset();
+}
+
+void ParticleFilter::reset()
+{
+  rng_ = Rng(params_.seed);
+  v_.clear();
+  m_ = MParticleSet();
+  m_scratch_ = MParticleSet();
+  leading_.clear();
+  image_size_ = cv::Size();
+}
+
+// ---------------------------------------------------------------------------
+// Seeding
+
+void ParticleFilter::seed(const RadialScanner& scanner)
+{
+  image_size_ = scanner.image().size();
+  const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
+  v_.assign(params_.num_v_particles, VParticle());
+  m_.resize(v_.size() * per_v);
+  m_scratch_.resize(m_.size());
+  for (std::size_t i = 0; i < v_.size(); ++i)
+  {
+    seedV(v_[i], scanner);
+    seedMRange(m_, i * per_v, (i + 1) * per_v, v_[i].rays);
+  }
+  leading_.clear();
+}
+
+// Spec "Where V-particles start matters": prefer places enclosed by edges
+// (inside closed regions), trying `seed_attempts` random places.
+void ParticleFilter::seedV(VParticle& v, const RadialScanner& scanner)
+{
+  int best_enclosure = -1;
+  for (int attempt = 0; attempt < params_.seed_attempts; ++attempt)
+  {
+    const float x = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.width - 2.0)));
+    const float y = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.height - 2.0)));
+    const float theta = static_cast<float>(rng_.uniform(-M_PI, M_PI));
+    // Rays that meet an edge, but not at once: texture is not a region.
+    RayHit hits[kFeatureRays];
+    scanFeatureRays(scanner, x, y, theta, hits);
+    int enclosure = 0;
+    for (const RayHit& hit : hits)
+      enclosure += (hit.valid && hit.distance >= kMinSeedRayLength) ? 1 : 0;
+    if (enclosure > best_enclosure)
+    {
+      best_enclosure = enclosure;
+      v = VParticle();
+      v.x = x;
+      v.y = y;
+      v.theta = theta;
+      v.rays = raySignature(hits);
+    }
+    if (enclosure >= params_.seed_enclosure_rays)
+      break;
+  }
+}
+
+void ParticleFilter::seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const RaySignature& rays)
+{
+  for (std::size_t j = 0; j < end - begin; ++j)
+    seedM(set, begin + j, prior_.slots()[j], rays);
+}
+
+// A uniform position inside the prototype; the heading from the proposal
+// (heading_proposal.h) when the V-particle sees enough edges, else uniform.
+void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, const RaySignature& rays)
+{
+  const Prototype& p = (*memory_)[prototype];
+  const cv::Point& at = p.interior()[rng_.index(p.interior().size())];
+  set.x[index] = static_cast<float>(at.x);
+  set.y[index] = static_cast<float>(at.y);
+  const int bin = bestHeadingBin(p, at.x, at.y, rays);
+  const double heading = bin >= 0 ? binToAngle(bin) : rng_.uniform(-M_PI, M_PI);
+  set.theta[index] = static_cast<float>(wrapAngle(heading));
+  set.prototype[index] = prototype;
+  for (auto& a : set.affine)
+    a[index] = 0.f;
+  set.affine_valid[index] = 0;
+  set.log_likelihood[index] = static_cast<float>(kFeatureRays * observation_.logInvalid());
+}
+
+// ---------------------------------------------------------------------------
+// One V-particle's iteration
+
+void ParticleFilter::update(int v_index, const RadialScanner& scanner)
+{
+  VParticle& v = v_[v_index];
+  const std::size_t begin = static_cast<std::size_t>(v_index) * mParticlesPerV();
+  const std::size_t end = begin + mParticlesPerV();
+
+  // Control from the policy; the M-particles follow through their A (paper 4.2).
+  const double heading_before = v.theta;
+  const Control u = policy_->decide(v, scanner, rng_);
+  MotionModel::moveV(v, u);
+  v.theta = static_cast<float>(wrapAngle(v.theta));
+  motion_.moveM(m_, begin, end, heading_before, u, rng_);
+  ++v.age;
+
+  measure(v_index, scanner);
+  accumulateEvidence(v_index);
+  resampleM(v_index);
+}
+
+// Evidence that v lies on an interpretable shape: the log of its
+// M-particles' mean likelihood (spec "Resampling V").
+void ParticleFilter::accumulateEvidence(int v_index)
+{
+  const int per_v = mParticlesPerV();
+  const std::size_t begin = static_cast<std::size_t>(v_index) * per_v, end = begin + per_v;
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = begin; i < end; ++i)
+    top = std::max(top, static_cast<double>(m_.log_likelihood[i]));
+  double sum = 0.0;
+  for (std::size_t i = begin; i < end; ++i)
+    sum += std::exp(m_.log_likelihood[i] - top);
+  VParticle& v = v_[v_index];
+  v.log_evidence_sum += top + std::log(sum / per_v);
+  ++v.evidence_count;
+}
+
+void ParticleFilter::addEvidence(const std::vector<EvidenceBonus>& evidence)
+{
+  for (const EvidenceBonus& bonus : evidence)
+    v_[bonus.v].log_evidence_sum += bonus.log_weight;
+}
+
+void ParticleFilter::setLeading(std::vector<LeadingHypothesis> leading) { leading_ = std::move(leading); }
+
+// ---------------------------------------------------------------------------
+// Moves from outside
+
+int ParticleFilter::applyFlow(const std::vector<VParticleMove>& moves, const RadialScanner& scanner)
+{
+  const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
+  int lost = 0;
+  for (std::size_t i = 0; i < v_.size(); ++i)
+  {
+    VParticle& v = v_[i];
+    const VParticleMove& move = moves[i];
+    switch (move.kind)
+    {
+      case VParticleMove::Kind::kWithTrack:
+        v.x = move.x;
+        v.y = move.y;
+        v.theta = move.theta;
+        break;
+      case VParticleMove::Kind::kWithFlow:
+        v.x = move.x;
+        v.y = move.y;
+        break;
+      case VParticleMove::Kind::kLost:
+        seedV(v, scanner);
+        seedMRange(m_, i * per_v, (i + 1) * per_v, v.rays);
+        ++lost;
+        break;
+    }
+  }
+  return lost;
+}
+
+void ParticleFilter::displace(const std::vector<cv::Point2f>& displacement)
+{
+  if (displacement.size() != v_.size())
+    throw InputError("moveVParticles: got " + std::to_string(displacement.size()) + " displacements for " +
+                     std::to_string(v_.size()) + " V-particles");
+  for (std::size_t i = 0; i < v_.size(); ++i)
+  {
+    if (!std::isfinite(displacement[i].x) || !std::isfinite(displacement[i].y))
+      throw InputError("moveVParticles: displacement " + std::to_string(i) + " is not finite");
+  }
+  const float max_x = static_cast<float>(std::max(0, image_size_.width - 1));
+  const float max_y = static_cast<float>(std::max(0, image_size_.height - 1));
+  for (std::size_t i = 0; i < v_.size(); ++i)
+  {
+    v_[i].x = std::min(std::max(v_[i].x + displacement[i].x, 0.f), max_x);
+    v_[i].y = std::min(std::max(v_[i].y + displacement[i].y, 0.f), max_y);
+  }
+}
+}  // namespace amcr

@@ -1,0 +1,158 @@
+// Resampling of the particle filter (paper 3.6): the M-particles of one
+// V-particle after its update, with the injection of the leading hypotheses,
+// and the V-particles every w iterations, with the attention feedback of
+// paper 4.3.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "amcr/particle_filter.h"
+#include "amcr/resampling.h"
+
+namespace amcr
+{
+namespace
+{
+constexpr int kMaxCopiesPerV = 3;  // copies one V-particle may get at a V-resampling
+// V-particles a recognized object keeps at full V-weight, whatever
+// params.num_v_particles: beyond it, the object's V-particles share this
+// much weight.
+constexpr int kVParticlesPerObject = 12;
+}  // namespace
+
+// SIR over all prototypes of R^-1(v) (paper 3.6), with a share re-seeded
+// uniformly and a share placed at the poses the leading hypotheses imply.
+void ParticleFilter::resampleM(int v_index)
+{
+  const VParticle& v = v_[v_index];
+  const int per_v = mParticlesPerV();
+  const std::size_t begin = static_cast<std::size_t>(v_index) * per_v;
+  weight_scratch_.resize(per_v);
+  float worst = std::numeric_limits<float>::infinity();
+  for (int j = 0; j < per_v; ++j)
+  {
+    weight_scratch_[j] = m_.log_likelihood[begin + j];
+    worst = std::min(worst, m_.log_likelihood[begin + j]);
+  }
+  int n_inject = leading_.empty() ? 0 : static_cast<int>(std::lround(params_.injection_fraction * per_v));
+  int n_reseed = static_cast<int>(std::lround(params_.m_reseed_fraction * per_v));
+  n_inject = std::min(n_inject, per_v);
+  n_reseed = std::min(n_reseed, per_v - n_inject);
+  const int n_draw = per_v - n_inject - n_reseed;
+
+  const std::vector<int> picks = systematicResampleLog(weight_scratch_, n_draw, rng_);
+  int k = 0;
+  for (; k < n_draw; ++k)
+    m_scratch_.copyFrom(m_, begin + picks[k], begin + k);
+  for (int j = 0; j < n_inject; ++j, ++k)
+    injectM(v, leading_[j % leading_.size()], begin + k, worst);
+  for (int j = 0; j < n_reseed; ++j, ++k)
+    seedM(m_scratch_, begin + k, prior_.draw(rng_), v.rays);
+  m_.copyRange(m_scratch_, begin, begin + per_v);
+}
+
+// The pose of v in the prototype that hypothesis h implies (its position,
+// its heading mapped through h's affine), with motion noise; a pose outside
+// the prototype is seeded instead.
+void ParticleFilter::injectM(const VParticle& v, const LeadingHypothesis& h, std::size_t index, float worst)
+{
+  const Affine& a = h.image_to_table;
+  const Prototype& p = (*memory_)[h.prototype];
+  const cv::Point2d at = applyAffine(a, cv::Point2d(v.x, v.y));
+  if (at.x < 0 || at.y < 0 || at.x > p.width() - 1 || at.y > p.height() - 1)
+  {
+    seedM(m_scratch_, index, h.prototype, v.rays);
+    return;
+  }
+  const double hx = std::cos(v.theta), hy = std::sin(v.theta);
+  m_scratch_.x[index] = static_cast<float>(at.x + rng_.gaussian(params_.motion_noise_translation));
+  m_scratch_.y[index] = static_cast<float>(at.y + rng_.gaussian(params_.motion_noise_translation));
+  m_scratch_.theta[index] = static_cast<float>(std::atan2(a(1, 0) * hx + a(1, 1) * hy, a(0, 0) * hx + a(0, 1) * hy) +
+                                               rng_.gaussian(params_.motion_noise_rotation));
+  m_scratch_.prototype[index] = h.prototype;
+  for (int e = 0; e < 6; ++e)
+    m_scratch_.affine[e][index] = static_cast<float>(a(e / 3, e % 3));
+  m_scratch_.affine_valid[index] = 1;
+  m_scratch_.log_likelihood[index] = worst;
+}
+
+// Each V-particle's log V-weight: its mean log evidence since the last
+// V-resampling. Attention is shared between objects: the V-particles of an
+// object beyond kVParticlesPerObject share its weight, so that a recognized
+// object does not draw every V-particle away from the others and from the
+// unexplored rest of the image.
+std::vector<double> ParticleFilter::attentionWeights(const std::vector<std::vector<int>>& object_v_particles) const
+{
+  const int n = static_cast<int>(v_.size());
+  std::vector<double> log_weights(n);
+  for (int i = 0; i < n; ++i)
+    log_weights[i] = v_[i].evidence_count > 0 ? v_[i].log_evidence_sum / v_[i].evidence_count
+                                              : -std::numeric_limits<double>::infinity();
+  for (const std::vector<int>& members : object_v_particles)
+  {
+    const double crowding = static_cast<double>(members.size()) / kVParticlesPerObject;
+    if (crowding > 1.0)
+      for (int i : members)
+        log_weights[i] -= std::log(crowding);
+  }
+  return log_weights;
+}
+
+std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
+                                           const std::vector<std::vector<int>>& object_v_particles)
+{
+  const int n = static_cast<int>(v_.size());
+  const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
+  const std::vector<double> log_weights = attentionWeights(object_v_particles);
+  const int n_reseed = std::min(n, static_cast<int>(std::lround(params_.v_reseed_fraction * n)));
+  const int n_draw = n - n_reseed;
+  const std::vector<int> picks = systematicResampleLog(log_weights, n_draw, rng_);
+
+  // A V-particle gets at most kMaxCopiesPerV copies per resampling, so that
+  // attention cannot collapse onto one region in a few rounds; the slots
+  // left over are seeded afresh.
+  std::vector<int> source(n, -1);
+  std::vector<int> copies(n, 0);
+  for (int k = 0; k < n_draw; ++k)
+    if (copies[picks[k]] < kMaxCopiesPerV)
+    {
+      source[k] = picks[k];
+      ++copies[picks[k]];
+    }
+
+  std::vector<VParticle> next(n);
+  std::vector<bool> used(n, false);
+  for (int k = 0; k < n; ++k)
+  {
+    const int from = source[k];
+    const std::size_t begin = static_cast<std::size_t>(k) * per_v, end = begin + per_v;
+    if (from < 0)
+    {
+      seedV(next[k], scanner);
+      seedMRange(m_scratch_, begin, end, next[k].rays);
+      continue;
+    }
+    next[k] = v_[from];
+    for (std::size_t j = 0; j < per_v; ++j)
+      m_scratch_.copyFrom(m_, static_cast<std::size_t>(from) * per_v + j, begin + j);
+    if (used[from])
+    {
+      // A copy turns to a random heading so the copies explore apart; its
+      // M-particles turn with it through their A.
+      const Control turn{rng_.uniform(-M_PI, M_PI), 0.0};
+      motion_.moveM(m_scratch_, begin, end, next[k].theta, turn, rng_);
+      MotionModel::moveV(next[k], turn);
+      next[k].theta = static_cast<float>(wrapAngle(next[k].theta));
+    }
+    used[from] = true;
+  }
+  for (auto& v : next)
+  {
+    v.log_evidence_sum = 0.0;
+    v.evidence_count = 0;
+  }
+  v_ = std::move(next);
+  std::swap(m_, m_scratch_);
+  return source;
+}
+}  // namespace amcr
