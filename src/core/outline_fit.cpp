@@ -12,6 +12,20 @@ namespace amcr
 {
 namespace
 {
+// refineOnEdges: the search along the normals shrinks over the passes by
+// this share of params.refine_search (coarse to fine), never below a floor.
+constexpr double kSearchShrink = 2.0 / 3.0;
+constexpr double kMinSearch = 1.5;  // px
+// A pass fits only when this many outline points found their edge: at least
+// kMinFitPoints and a kFitPointsDivisor-th of the outline.
+constexpr std::size_t kMinFitPoints = 6;
+constexpr std::size_t kFitPointsDivisor = 4;
+// Points whose edge lies beyond kResidualFactor times the median offset
+// (and beyond kMinResidualLimit px) are clutter and left out of the fit.
+constexpr double kResidualFactor = 2.5;
+constexpr double kMinResidualLimit = 1.0;  // px
+constexpr std::size_t kPolaritySampleStep = 3;  // every third outline point tells the polarity
+
 /// An outline point mapped into the image with its image-space unit normal.
 struct MappedPoint
 {
@@ -119,12 +133,12 @@ bool nearestEdge(const NormalProfile& profile, double threshold, int sign, doubl
 }
 
 /// The polarity most outline points show: +1 when the grey level rises
-/// outwards (a dark print on light paper), -1 otherwise. Every third point
-/// is enough to tell.
+/// outwards (a dark print on light paper), -1 otherwise. Every
+/// kPolaritySampleStep-th point is enough to tell.
 int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped, double search)
 {
   int rising = 0, falling = 0;
-  for (std::size_t i = 0; i < mapped.size(); i += 3)
+  for (std::size_t i = 0; i < mapped.size(); i += kPolaritySampleStep)
   {
     double offset = 0.0, step = 0.0;
     if (strongestEdge(NormalProfile(scanner, mapped[i], search), scanner.threshold(), offset, step))
@@ -165,7 +179,7 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
   for (int pass = 0; pass < iterations; ++pass)
   {
     // Coarse to fine: the search shrinks to a third over the passes.
-    const double range = std::max(1.5, search * (1.0 - (2.0 / 3.0) * pass / std::max(1, iterations - 1)));
+    const double range = std::max(kMinSearch, search * (1.0 - kSearchShrink * pass / std::max(1, iterations - 1)));
     const std::vector<MappedPoint> mapped = mapOutline(prototype, current);
     std::vector<cv::Point2d> from, to;
     std::vector<double> residual;
@@ -178,12 +192,12 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
       to.push_back(p.image + offset * p.normal);
       residual.push_back(std::abs(offset));
     }
-    if (from.size() < std::max<std::size_t>(6, mapped.size() / 4))
+    if (from.size() < std::max(kMinFitPoints, mapped.size() / kFitPointsDivisor))
       break;
     // Drop points whose edge is far beyond the typical one (clutter).
     std::vector<double> sorted = residual;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double limit = std::max(1.0, 2.5 * sorted[sorted.size() / 2]);
+    const double limit = std::max(kMinResidualLimit, kResidualFactor * sorted[sorted.size() / 2]);
     std::vector<cv::Point2d> kept_from, kept_to;
     for (std::size_t i = 0; i < from.size(); ++i)
       if (residual[i] <= limit)
