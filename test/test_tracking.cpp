@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "amcr/exploration_policy.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "scene_drawing.h"
@@ -231,35 +232,56 @@ TEST(SeveralObjects, TwoCopiesOfOneShapeAreTwoTracks)
   EXPECT_EQ(ids.size(), 2u);
 }
 
-// A frame budget far below a full iteration splits the rounds over frames:
-// less than one iteration per frame on average, and the object of the
-// end-to-end test is still recognized, within more frames.
+/// The frame budget on a clock of the test's own: every V-particle update
+/// costs `update_ms` of it (the exploration policy, called once per update,
+/// advances it) and nothing else takes time, so the budget's decisions are
+/// exact and need no calibration against the machine.
+class CostedPolicy : public amcr::ExplorationPolicy
+{
+public:
+  CostedPolicy(const amcr::Params& p, std::shared_ptr<double> now, double update_ms)
+    : reflect_(p.v_step, p.reflection_jitter), now_(std::move(now)), update_ms_(update_ms)
+  {
+  }
+  amcr::Control decide(const amcr::VParticle& v, const amcr::RadialScanner& scanner, amcr::Rng& rng) const override
+  {
+    *now_ += update_ms_;
+    return reflect_.decide(v, scanner, rng);
+  }
+
+private:
+  amcr::ReflectAtEdgesPolicy reflect_;
+  std::shared_ptr<double> now_;
+  double update_ms_;
+};
+
+/// Puts `recognizer` on a fake clock on which each V-particle update costs `update_ms`.
+void costUpdates(amcr::Recognizer& recognizer, double update_ms)
+{
+  const auto now = std::make_shared<double>(0.0);
+  recognizer.setClock([now] { return *now; });
+  recognizer.setPolicy(std::make_unique<CostedPolicy>(recognizer.params(), now, update_ms));
+}
+
+constexpr double kUpdateMs = 1.0;  // fake ms per V-particle update
+
+// A frame budget of half the updates of an iteration (60 V-particles at
+// 1 ms each, 30 ms) splits the rounds over frames: no frame after the first
+// (whose estimates start at 0) runs more updates than fit, less than one
+// iteration per frame on average, and the object of the end-to-end test is
+// still recognized, within more frames.
 TEST(FrameBudget, SplitIterationsStillRecognize)
 {
   amcr_test::Scene scene;
   const amcr::Affine truth = amcr_test::makeAffine(amcr_test::prototypeCentre(), {330, 250}, 0.6, 0.85, 0.75, 0.25);
   scene.objects.push_back({ShapeId::kArrow, truth});
   scene.clutter = clutter(101);
-  // This machine's cost of a frame with a whole iteration, and of one with
-  // a single V-particle update (the flow, the extraction and the report);
-  // the budget leaves about half of the V-particle updates to the next frame.
-  const cv::Mat probe = amcr_test::renderClean(scene);
-  const auto mean_ms = [&](amcr::Params q) {
-    amcr::Recognizer r(q, memory());
-    r.step(probe);  // the first step also seeds
-    double ms = 0.0;
-    for (int k = 0; k < 6; ++k)
-      ms += r.step(probe).time_ms / 6.0;
-    return ms;
-  };
   amcr::Params p = params(true);
-  const double full_ms = mean_ms(p);
-  amcr::Params one_v = p;
-  one_v.frame_budget_ms = 1e-3;
-  const double fixed_ms = mean_ms(one_v);
-  p.frame_budget_ms = fixed_ms + 0.5 * std::max(0.0, full_ms - fixed_ms);
+  p.frame_budget_ms = 30.0;
+  const int fitting_updates = static_cast<int>(p.frame_budget_ms / kUpdateMs);
 
   amcr::Recognizer recognizer(p, memory());
+  costUpdates(recognizer, kUpdateMs);
   const std::vector<cv::Mat> frames = amcr_test::renderSequence(scene, 400);
   double iterations = 0.0;
   int first = -1, held = 0;
@@ -269,6 +291,10 @@ TEST(FrameBudget, SplitIterationsStillRecognize)
     iterations += result.iterations;
     EXPECT_GT(result.iterations, 0.0);
     EXPECT_LE(result.iterations, 1.0);
+    const int updates = static_cast<int>(std::lround(result.iterations * p.num_v_particles));
+    EXPECT_DOUBLE_EQ(result.time_ms, updates * kUpdateMs) << "frame " << k << ": time_ms is not the clock's";
+    if (k > 0)
+      EXPECT_LE(updates, fitting_updates) << "frame " << k;
     const bool correct = find(result.objects, "arrow", truth, kStaticTolerance) != nullptr;
     if (correct && first < 0)
       first = k;
@@ -276,8 +302,7 @@ TEST(FrameBudget, SplitIterationsStillRecognize)
       held += correct;
   }
   const double per_frame = iterations / frames.size();
-  std::cout << "[ budget   ] budget " << p.frame_budget_ms << " ms (full iteration " << full_ms << " ms, fixed "
-            << fixed_ms << " ms): "
+  std::cout << "[ budget   ] budget " << p.frame_budget_ms << " ms at " << kUpdateMs << " ms per update: "
             << per_frame << " iterations per frame, first correct at frame " << first << ", held in " << held
             << " of " << (first >= 0 ? static_cast<int>(frames.size()) - first : 0) << std::endl;
   EXPECT_LT(per_frame, 0.9) << "the budget did not split the iterations";
