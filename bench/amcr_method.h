@@ -31,8 +31,7 @@ public:
         d.correspondences.push_back({c.image, c.prototype});
       found.push_back(std::move(d));
     }
-    std::sort(found.begin(), found.end(), [](const Detection& a, const Detection& b) { return a.score > b.score; });
-    return found;
+    return found;  // in the recognizer's order: best score first
   }
 
 private:
