@@ -311,6 +311,31 @@ TEST(FrameBudget, SplitIterationsStillRecognize)
   EXPECT_GE(held, 0.8 * (static_cast<int>(frames.size()) - first));
 }
 
+// reset() forgets the frame budget's time estimates: after frames of
+// expensive updates, the first frame after a reset runs as many updates as
+// the first frame of a new recognizer.
+TEST(FrameBudget, ResetForgetsTheTimeEstimates)
+{
+  amcr_test::Scene scene;
+  scene.objects.push_back({ShapeId::kArrow, amcr_test::makeAffine(amcr_test::prototypeCentre(), {330, 250}, 0.6, 0.85, 0.75, 0.25)});
+  scene.clutter = clutter(101);
+  const cv::Mat frame = amcr_test::renderClean(scene);
+  amcr::Params p = params(false);
+  p.frame_budget_ms = 30.0;
+
+  amcr::Recognizer fresh(p, memory());
+  costUpdates(fresh, kUpdateMs);
+  const double first = fresh.step(frame).iterations;
+
+  amcr::Recognizer used(p, memory());
+  costUpdates(used, 10.0 * kUpdateMs);
+  for (int k = 0; k < 5; ++k)
+    used.step(frame);
+  used.reset();
+  costUpdates(used, kUpdateMs);
+  EXPECT_EQ(used.step(frame).iterations, first) << "the time estimates of the expensive frames outlived reset()";
+}
+
 // Jumps: a different scene re-seeds the V-particles whose flow fails and the
 // new object is recognized; a change of resolution re-seeds everything.
 TEST(Jumps, ANewSceneAndANewResolutionReseedWithoutACrash)

@@ -47,7 +47,9 @@ public:
   void setMemory(std::shared_ptr<const PrototypeMemory> memory);
 
   /// Forgets everything: particles are re-seeded at the next step, the
-  /// generator is re-seeded with params.seed, the optical flow restarts.
+  /// generator is re-seeded with params.seed, the optical flow restarts, the
+  /// frame budget's time estimates start again from 0 (the policy and the
+  /// clock stay).
   /// Track ids go on counting: none is reused in the recognizer's life.
   void reset();
 

@@ -28,6 +28,7 @@ void Recognizer::reset()
 {
   filter_.reset();
   tracker_.reset();
+  budget_.reset();
   flow_origins_.clear();
   iteration_ = 0;
   next_v_ = 0;
