@@ -159,3 +159,42 @@ TEST(DrawOverlay, RefusesEmptyAndUnsupportedImages)
   EXPECT_THROW(amcr::drawOverlay(cv::Mat(10, 10, CV_8UC2, cv::Scalar(0)), recognizer, nothing), amcr::InputError);
   EXPECT_THROW(amcr::drawOverlay(cv::Mat(10, 10, CV_32SC1, cv::Scalar(0)), recognizer, nothing), amcr::InputError);
 }
+
+// The view the overlay draws from: every V-particle once, every M-particle
+// once in its prototype's list with a valid owner, dominant prototypes only
+// where the cluster converged, and flow trails only after a flow.
+TEST(FilterView, HoldsEveryParticleOnce)
+{
+  amcr::Params params = smallParams();
+  params.optical_flow = true;
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  for (int k = 0; k < 3; ++k)
+    memory->add("shape-" + std::to_string(k), silhouette(k), params);
+  amcr::Recognizer recognizer(params, memory);
+  recognizer.step(scene());
+  amcr::FilterView view = recognizer.view();
+  ASSERT_EQ(view.v.size(), recognizer.vParticles().size());
+  for (const amcr::VParticleView& v : view.v)
+  {
+    EXPECT_FALSE(v.trail.valid) << "a trail before any flow";
+    EXPECT_GE(v.dominant_prototype, -1);
+    EXPECT_LT(v.dominant_prototype, 3);
+  }
+  ASSERT_EQ(view.m_by_prototype.size(), memory->size());
+  std::size_t dots = 0;
+  for (const auto& prototype : view.m_by_prototype)
+    for (const amcr::MParticleDot& dot : prototype)
+    {
+      EXPECT_GE(dot.v, 0);
+      EXPECT_LT(dot.v, static_cast<int>(view.v.size()));
+      ++dots;
+    }
+  EXPECT_EQ(dots, recognizer.mParticles().size());
+
+  recognizer.step(scene());  // the same frame again: the flow is zero and found
+  view = recognizer.view();
+  int trails = 0;
+  for (const amcr::VParticleView& v : view.v)
+    trails += v.trail.valid ? 1 : 0;
+  EXPECT_GT(trails, 0) << "no V-particle shows where the flow took it from";
+}

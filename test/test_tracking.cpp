@@ -294,7 +294,9 @@ TEST(FrameBudget, SplitIterationsStillRecognize)
     const int updates = static_cast<int>(std::lround(result.iterations * p.num_v_particles));
     EXPECT_DOUBLE_EQ(result.time_ms, updates * kUpdateMs) << "frame " << k << ": time_ms is not the clock's";
     if (k > 0)
+    {
       EXPECT_LE(updates, fitting_updates) << "frame " << k;
+    }
     const bool correct = find(result.objects, "arrow", truth, kStaticTolerance) != nullptr;
     if (correct && first < 0)
       first = k;

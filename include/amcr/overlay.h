@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "amcr/filter_view.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/recognition_result.h"
 #include "amcr/recognizer.h"
@@ -51,17 +52,24 @@ struct OverlayLayout
 OverlayLayout overlayLayout(const cv::Size& input_size, std::size_t num_prototypes,
                             const OverlayOptions& options = OverlayOptions());
 
-/// Draws the overlay of one step, with `result` the value `recognizer.step`
-/// returned for `input`. `input` is any image type that prepareScanImage
-/// takes: 8-bit images keep their colour, others are shown in grey. Returns a
-/// CV_8UC3 BGR image of overlayLayout(input.size(), memory size).size.
-/// Throws InputError for an empty or unsupported image.
+/// Draws the overlay of one step from the filter's view (Recognizer::view())
+/// and the `result` the step returned for `input`. `input` is any image type
+/// that prepareScanImage takes: 8-bit images keep their colour, others are
+/// shown in grey. Returns a CV_8UC3 BGR image of
+/// overlayLayout(input.size(), memory size).size. Throws InputError for an
+/// empty or unsupported image.
 ///
-/// Colours: a V-particle's circle has the colour of the prototype that holds
-/// most of its M-particles (the same colour frames that prototype's panel), or
-/// grey when no prototype holds half of them; its heading tick has the
-/// V-particle's own colour, which its M-particle dots share in the panels.
+/// Colours: a V-particle's circle has the colour of its dominant prototype
+/// (the prototype of its converged M-cluster, as the result extraction
+/// decides; the same colour frames that prototype's panel), or grey when its
+/// M-particles have not converged; its heading tick has the V-particle's own
+/// colour, which its M-particle dots share in the panels. A white line
+/// shows where the optical flow of the step took a V-particle from.
 /// Recognized objects and their correspondence lines have one colour per track.
+cv::Mat drawOverlay(const cv::Mat& input, const PrototypeMemory& memory, const FilterView& view,
+                    const RecognitionResult& result, const OverlayOptions& options = OverlayOptions());
+
+/// The same with the recognizer's memory and view.
 cv::Mat drawOverlay(const cv::Mat& input, const Recognizer& recognizer, const RecognitionResult& result,
                     const OverlayOptions& options = OverlayOptions());
 

@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 
 #include "amcr/exploration_policy.h"
+#include "amcr/filter_view.h"
 #include "amcr/flow_tracker.h"
 #include "amcr/frame_budget.h"
 #include "amcr/params.h"
@@ -75,9 +76,10 @@ public:
   /// the context prior (params.prototype_priors) as particle counts.
   const std::vector<int>& priorSlots() const { return filter_.priorSlots(); }
   long iteration() const { return iteration_; }
-  /// Each V-particle's position before the optical flow of the last step
-  /// moved it (empty when the last step had no flow).
-  const std::vector<cv::Point2f>& flowOrigins() const { return flow_origins_; }
+  /// The filter as the overlay draws it: each V-particle with its dominant
+  /// prototype (as the result extraction defines it) and its flow trail, and
+  /// the M-particles per prototype.
+  FilterView view() const;
 
 private:
   /// The V-particle updates of this frame: a whole round, or under the frame
@@ -85,6 +87,8 @@ private:
   /// Returns the share of an iteration run; `round_done` tells whether the
   /// round ended.
   double runUpdates(const RadialScanner& scanner, double frame_start, bool& round_done);
+  /// Moves the V-particles by the optical flow; returns how many were lost.
+  int followFlow(const RadialScanner& scanner);
 
   Params params_;
   ParticleFilter filter_;
@@ -92,6 +96,6 @@ private:
   FrameBudget budget_;
   long iteration_ = 0;
   int next_v_ = 0;  // the V-particle the current round goes on with (frame budget)
-  std::vector<cv::Point2f> flow_origins_;
+  std::vector<FlowTrail> trails_;  // per V-particle, of the last step's flow (empty: none)
 };
 }  // namespace amcr

@@ -183,11 +183,101 @@ OverlayLayout overlayLayout(const cv::Size& input_size, std::size_t num_prototyp
   return layout;
 }
 
-cv::Mat drawOverlay(const cv::Mat& input, const Recognizer& recognizer, const RecognitionResult& result,
+namespace
+{
+/// M-particles in the panels, one colour per owning V-particle.
+void drawMParticles(cv::Mat& canvas, const std::vector<PanelMap>& panels, const FilterView& view,
                     const OverlayOptions& options)
 {
+  const std::size_t r = std::min(panels.size(), view.m_by_prototype.size());
+  for (std::size_t k = 0; options.draw_m_particles && k < r; ++k)
+    for (const MParticleDot& dot : view.m_by_prototype[k])
+    {
+      const cv::Point2d p = panels[k].toOverlay(cv::Point2d(dot.table));
+      if (finite(p) && panels[k].picture.contains(toPixel(p)))
+        cv::circle(canvas, toPixel(p), options.m_dot_radius, vParticleColour(dot.v), cv::FILLED);
+    }
+}
+
+/// A recognized object: outline and text in the input, correspondence lines
+/// from the V-particles to the cluster means in the panel.
+void drawObject(cv::Mat& canvas, cv::Mat& image, const std::vector<PanelMap>& panels, const PrototypeMemory& memory,
+                const RecognizedObject& object, const OverlayOptions& options)
+{
+  const int r = static_cast<int>(memory.size());
+  const cv::Scalar colour = trackColour(object.track_id);
+  std::vector<cv::Point> outline;
+  outline.reserve(object.outline.size());
+  for (const cv::Point2d& p : object.outline)
+    if (finite(p))
+      outline.push_back(toPixel(p));
+  if (outline.size() >= 2)
+    cv::polylines(image, outline, true, colour, 2, cv::LINE_AA);
+
+  if (options.draw_correspondences && object.prototype_id >= 0 && object.prototype_id < r)
+  {
+    const Prototype& prototype = memory[object.prototype_id];
+    const PanelMap& panel = panels[object.prototype_id];
+    for (const Correspondence& c : object.correspondences)
+    {
+      const cv::Point2d target = panel.toOverlay(applyAffine(prototype.originalToTable(), c.prototype));
+      if (!finite(c.image) || !finite(target))
+        continue;
+      cv::line(canvas, toPixel(c.image), toPixel(target), colour, 1, cv::LINE_AA);
+      // The cluster mean, ringed in black so it stands out of the M-particle dots.
+      cv::circle(canvas, toPixel(target), 4, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+      cv::circle(canvas, toPixel(target), 4, colour, 1, cv::LINE_AA);
+    }
+  }
+
+  std::string text = object.label + " #" + std::to_string(object.track_id) + " " + format("%.2f", object.score) +
+                     " (" + std::to_string(object.support) + ")";
+  cv::Point anchor(0, 0);
+  if (!outline.empty())
+  {
+    const cv::Rect box = cv::boundingRect(outline);
+    anchor = cv::Point(box.x, box.y - 18);
+  }
+  drawText(image, text, anchor, colour);
+}
+
+/// V-particles on top: circle in the dominant prototype's colour, heading
+/// tick in the V-particle's own colour, and a white trail from where the
+/// optical flow took it in this frame.
+void drawVParticles(cv::Mat& image, const FilterView& view, const OverlayOptions& options)
+{
+  for (std::size_t v = 0; options.draw_v_particles && v < view.v.size(); ++v)
+  {
+    const VParticleView& particle = view.v[v];
+    const cv::Point2d p(particle.position);
+    if (!finite(p) || !std::isfinite(particle.theta))
+      continue;
+    if (particle.trail.valid)
+      cv::line(image, toPixel(cv::Point2d(particle.trail.from)), toPixel(p), cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+    const cv::Scalar circle_colour =
+        particle.dominant_prototype >= 0 ? prototypeColour(particle.dominant_prototype) : kUndecided;
+    const cv::Point2d tip(p.x + options.heading_length * std::cos(particle.theta),
+                          p.y + options.heading_length * std::sin(particle.theta));
+    cv::line(image, toPixel(p), toPixel(tip), vParticleColour(static_cast<int>(v)), 2, cv::LINE_AA);
+    cv::circle(image, toPixel(p), options.v_radius, circle_colour, 2, cv::LINE_AA);
+  }
+}
+
+void drawStatus(cv::Mat& image, const FilterView& view, const RecognitionResult& result)
+{
+  const std::string status = "iteration " + std::to_string(result.iteration) + "  " +
+                             format("%.1f ms", result.time_ms) + "  converged V " +
+                             std::to_string(result.converged_v_particles) + "/" + std::to_string(view.v.size()) +
+                             "  objects " + std::to_string(result.objects.size()) +
+                             (result.iterations < 1.0 ? format("  %.2f of an iteration", result.iterations) : "");
+  drawText(image, status, cv::Point(0, 0), cv::Scalar(255, 255, 255));
+}
+}  // namespace
+
+cv::Mat drawOverlay(const cv::Mat& input, const PrototypeMemory& memory, const FilterView& view,
+                    const RecognitionResult& result, const OverlayOptions& options)
+{
   const cv::Mat bgr = toBgr8(input);
-  const PrototypeMemory& memory = recognizer.memory();
   const int r = static_cast<int>(memory.size());
   const OverlayLayout layout = overlayLayout(bgr.size(), memory.size(), options);
 
@@ -206,109 +296,20 @@ cv::Mat drawOverlay(const cv::Mat& input, const Recognizer& recognizer, const Re
     panels.push_back(panelMap(layout, k, memory[k]));
     drawPanel(canvas, panels.back(), memory[k], k, recognized[k]);
   }
+  drawMParticles(canvas, panels, view, options);
 
-  // M-particles in the panels, one colour per owning V-particle, and each
-  // V-particle's dominant prototype.
-  const std::vector<VParticle>& vs = recognizer.vParticles();
-  const MParticleSet& ms = recognizer.mParticles();
-  const std::size_t per_v = static_cast<std::size_t>(std::max(0, recognizer.mParticlesPerV()));
-  std::vector<int> dominant(vs.size(), -1);
-  std::vector<int> counts(r);
-  for (std::size_t v = 0; v < vs.size(); ++v)
-  {
-    const std::size_t begin = std::min(ms.size(), v * per_v);
-    const std::size_t end = std::min(ms.size(), (v + 1) * per_v);
-    std::fill(counts.begin(), counts.end(), 0);
-    const cv::Scalar colour = vParticleColour(static_cast<int>(v));
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      const int k = i < ms.prototype.size() ? ms.prototype[i] : -1;
-      if (k < 0 || k >= r)
-        continue;
-      ++counts[k];
-      if (options.draw_m_particles)
-      {
-        const cv::Point2d p = panels[k].toOverlay(cv::Point2d(ms.x[i], ms.y[i]));
-        if (finite(p) && panels[k].picture.contains(toPixel(p)))
-          cv::circle(canvas, toPixel(p), options.m_dot_radius, colour, cv::FILLED);
-      }
-    }
-    if (end > begin)
-    {
-      const auto best = std::max_element(counts.begin(), counts.end());
-      if (best != counts.end() && 2 * *best >= static_cast<int>(end - begin))
-        dominant[v] = static_cast<int>(best - counts.begin());
-    }
-  }
-
-  // Recognized objects: outline and text in the input, correspondence lines
-  // from the V-particles to the cluster means in the panel.
   cv::Mat image = canvas(layout.image);
   for (const RecognizedObject& object : result.objects)
-  {
-    const cv::Scalar colour = trackColour(object.track_id);
-    std::vector<cv::Point> outline;
-    outline.reserve(object.outline.size());
-    for (const cv::Point2d& p : object.outline)
-      if (finite(p))
-        outline.push_back(toPixel(p));
-    if (outline.size() >= 2)
-      cv::polylines(image, outline, true, colour, 2, cv::LINE_AA);
-
-    if (options.draw_correspondences && object.prototype_id >= 0 && object.prototype_id < r)
-    {
-      const Prototype& prototype = memory[object.prototype_id];
-      const PanelMap& panel = panels[object.prototype_id];
-      for (const Correspondence& c : object.correspondences)
-      {
-        const cv::Point2d target = panel.toOverlay(applyAffine(prototype.originalToTable(), c.prototype));
-        if (!finite(c.image) || !finite(target))
-          continue;
-        cv::line(canvas, toPixel(c.image), toPixel(target), colour, 1, cv::LINE_AA);
-        // The cluster mean, ringed in black so it stands out of the M-particle dots.
-        cv::circle(canvas, toPixel(target), 4, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
-        cv::circle(canvas, toPixel(target), 4, colour, 1, cv::LINE_AA);
-      }
-    }
-
-    std::string text = object.label + " #" + std::to_string(object.track_id) + " " +
-                       format("%.2f", object.score) + " (" + std::to_string(object.support) + ")";
-    cv::Point anchor(0, 0);
-    if (!outline.empty())
-    {
-      const cv::Rect box = cv::boundingRect(outline);
-      anchor = cv::Point(box.x, box.y - 18);
-    }
-    drawText(image, text, anchor, colour);
-  }
-
-  // V-particles on top: circle in the dominant prototype's colour, heading
-  // tick in the V-particle's own colour, and a white trail from where the
-  // optical flow took it in this frame.
-  const std::vector<cv::Point2f>& origins = recognizer.flowOrigins();
-  for (std::size_t v = 0; options.draw_v_particles && v < vs.size(); ++v)
-  {
-    const cv::Point2d p(vs[v].x, vs[v].y);
-    if (!finite(p) || !std::isfinite(vs[v].theta))
-      continue;
-    if (v < origins.size())
-      cv::line(image, toPixel(cv::Point2d(origins[v])), toPixel(p), cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
-    const cv::Scalar circle_colour = dominant[v] >= 0 ? prototypeColour(dominant[v]) : kUndecided;
-    const cv::Point2d tip(p.x + options.heading_length * std::cos(vs[v].theta),
-                          p.y + options.heading_length * std::sin(vs[v].theta));
-    cv::line(image, toPixel(p), toPixel(tip), vParticleColour(static_cast<int>(v)), 2, cv::LINE_AA);
-    cv::circle(image, toPixel(p), options.v_radius, circle_colour, 2, cv::LINE_AA);
-  }
-
+    drawObject(canvas, image, panels, memory, object, options);
+  drawVParticles(image, view, options);
   if (options.draw_status)
-  {
-    const std::string status = "iteration " + std::to_string(result.iteration) + "  " +
-                               format("%.1f ms", result.time_ms) + "  converged V " +
-                               std::to_string(result.converged_v_particles) + "/" + std::to_string(vs.size()) +
-                               "  objects " + std::to_string(result.objects.size()) +
-                               (result.iterations < 1.0 ? format("  %.2f of an iteration", result.iterations) : "");
-    drawText(image, status, cv::Point(0, 0), cv::Scalar(255, 255, 255));
-  }
+    drawStatus(image, view, result);
   return canvas;
+}
+
+cv::Mat drawOverlay(const cv::Mat& input, const Recognizer& recognizer, const RecognitionResult& result,
+                    const OverlayOptions& options)
+{
+  return drawOverlay(input, recognizer.memory(), recognizer.view(), result, options);
 }
 }  // namespace amcr

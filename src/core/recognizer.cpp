@@ -6,6 +6,21 @@
 
 namespace amcr
 {
+namespace
+{
+/// The trails after a V-resampling: a copy keeps its source's trail (it
+/// stands where its source stood), a V-particle seeded afresh has none.
+std::vector<FlowTrail> inherit(const std::vector<FlowTrail>& trails, const std::vector<int>& ancestry)
+{
+  std::vector<FlowTrail> inherited;
+  if (trails.empty())
+    return inherited;
+  for (int from : ancestry)
+    inherited.push_back(from >= 0 ? trails[from] : FlowTrail());
+  return inherited;
+}
+}  // namespace
+
 Recognizer::Recognizer(const Params& params, std::shared_ptr<const PrototypeMemory> memory)
   : params_((params.validate(), params))
   , filter_(params_, std::move(memory))
@@ -29,7 +44,7 @@ void Recognizer::reset()
   filter_.reset();
   tracker_.reset();
   budget_.reset();
-  flow_origins_.clear();
+  trails_.clear();
   iteration_ = 0;
   next_v_ = 0;
 }
@@ -51,16 +66,12 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
     tracker_.clearTracks();
     next_v_ = 0;
   }
-  flow_origins_.clear();
+  trails_.clear();
   if (params_.optical_flow)
   {
     tracker_.push(grey);
     if (!fresh && tracker_.ready())
-    {
-      for (const VParticle& v : filter_.vParticles())
-        flow_origins_.emplace_back(v.x, v.y);
-      result.flow_failures = filter_.applyFlow(tracker_.follow(filter_.vParticles(), filter_.imageSize()), scanner);
-    }
+      result.flow_failures = followFlow(scanner);
   }
 
   // Paper 3.6: move every V-particle, predict and weight its M-particles,
@@ -76,7 +87,7 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   for (const VParticleCluster& c : extraction.clusters)
     result.converged_v_particles += isConverged(c, params_.cluster_min_share) ? 1 : 0;
   if (round_done && iteration_ % params_.v_resample_interval == 0)
-    filter_.resampleV(scanner, extraction.feedback.object_v_particles);
+    trails_ = inherit(trails_, filter_.resampleV(scanner, extraction.feedback.object_v_particles));
   result.objects = std::move(extraction.objects);
   tracker_.assign(result.objects);
   if (budget_.limited())
@@ -112,6 +123,40 @@ double Recognizer::runUpdates(const RadialScanner& scanner, double frame_start, 
   if (budget_.limited())
     budget_.recordUpdates(budget_.now() - updates_start, updated);
   return static_cast<double>(updated) / n;
+}
+
+int Recognizer::followFlow(const RadialScanner& scanner)
+{
+  const std::vector<VParticle>& v = filter_.vParticles();
+  const std::vector<VParticleMove> moves = tracker_.follow(v, filter_.imageSize());
+  trails_.assign(v.size(), FlowTrail());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    trails_[i] = {moves[i].kind != VParticleMove::Kind::kLost, cv::Point2f(v[i].x, v[i].y)};
+  return filter_.applyFlow(moves, scanner);
+}
+
+FilterView Recognizer::view() const
+{
+  FilterView view;
+  const std::vector<VParticle>& v = filter_.vParticles();
+  const std::vector<VParticleCluster> clusters = filterClusters(filter_);
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    VParticleView particle;
+    particle.position = cv::Point2f(v[i].x, v[i].y);
+    particle.theta = v[i].theta;
+    if (isConverged(clusters[i], params_.cluster_min_share))
+      particle.dominant_prototype = clusters[i].prototype;
+    if (i < trails_.size())
+      particle.trail = trails_[i];
+    view.v.push_back(particle);
+  }
+  const MParticleSet& m = filter_.mParticles();
+  const std::size_t per_v = static_cast<std::size_t>(filter_.mParticlesPerV());
+  view.m_by_prototype.resize(filter_.memory().size());
+  for (std::size_t i = 0; i < m.size() && per_v > 0; ++i)
+    view.m_by_prototype[m.prototype[i]].push_back({cv::Point2f(m.x[i], m.y[i]), static_cast<int>(i / per_v)});
+  return view;
 }
 
 void Recognizer::moveVParticles(const std::vector<cv::Point2f>& displacement) { filter_.displace(displacement); }
