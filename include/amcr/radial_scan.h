@@ -68,6 +68,9 @@ public:
   const cv::Mat& image() const { return image_; }
 
 private:
+  /// The edge of the run of steps above the threshold that starts at t (scan()).
+  RayHit peakOfRun(float x, float y, float dx, float dy, int t, int steps, float last_step, float step, float current,
+                   float next) const;
 
   /// Whole px of free space at (x, y) (0 without a map).
   int leap(float x, float y) const

@@ -71,41 +71,48 @@ RayHit RadialScanner::scan(float x, float y, float dx, float dy) const
     const float next = sample(x + tn * dx, y + tn * dy);
     const float step = std::abs(next - before);
     if (step >= threshold_)
-    {
-      // Follow the run of large steps to its largest one, then refine with a parabola.
-      float prev_step = last_step;
-      int best_t = t;
-      float best = step;
-      float b = current, c = next;
-      for (int u = t + 1; u < steps; ++u)
-      {
-        const float un = static_cast<float>(u + 1);
-        if (!inside(un))
-          break;
-        const float n = sample(x + un * dx, y + un * dy);
-        const float s = std::abs(n - b);
-        if (s <= best)
-        {
-          const float denom = prev_step - 2.f * best + s;
-          const float offset = denom < 0.f ? 0.5f * (prev_step - s) / denom : 0.f;
-          hit.valid = true;
-          hit.distance = best_t + std::max(-0.5f, std::min(0.5f, offset));
-          return hit;
-        }
-        prev_step = best;
-        best = s;
-        best_t = u;
-        b = c;
-        c = n;
-      }
-      hit.valid = true;
-      hit.distance = static_cast<float>(best_t);
-      return hit;
-    }
+      return peakOfRun(x, y, dx, dy, t, steps, last_step, step, current, next);
     last_step = step;
     before = current;
     current = next;
   }
+  return hit;
+}
+
+// Follows the run of large steps that starts at t (step `step`, the step
+// before it `last_step`, samples `current` at t and `next` at t + 1) to its
+// largest step, then refines the edge's place with a parabola.
+RayHit RadialScanner::peakOfRun(float x, float y, float dx, float dy, int t, int steps, float last_step, float step,
+                                float current, float next) const
+{
+  RayHit hit;
+  float prev_step = last_step;
+  int best_t = t;
+  float best = step;
+  float b = current, c = next;
+  for (int u = t + 1; u < steps; ++u)
+  {
+    const float un = static_cast<float>(u + 1);
+    if (!contains(x + un * dx, y + un * dy))
+      break;
+    const float n = sample(x + un * dx, y + un * dy);
+    const float s = std::abs(n - b);
+    if (s <= best)
+    {
+      const float denom = prev_step - 2.f * best + s;
+      const float offset = denom < 0.f ? 0.5f * (prev_step - s) / denom : 0.f;
+      hit.valid = true;
+      hit.distance = best_t + std::max(-0.5f, std::min(0.5f, offset));
+      return hit;
+    }
+    prev_step = best;
+    best = s;
+    best_t = u;
+    b = c;
+    c = n;
+  }
+  hit.valid = true;
+  hit.distance = static_cast<float>(best_t);
   return hit;
 }
 
