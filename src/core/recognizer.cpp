@@ -8,6 +8,7 @@
 #include "amcr/errors.h"
 #include "amcr/heading_proposal.h"
 #include "amcr/ray_directions.h"
+#include "amcr/relational_update.h"
 #include "amcr/resampling.h"
 
 namespace amcr
@@ -18,26 +19,6 @@ constexpr int kMaxCopiesPerV = 3;         // copies one V-particle may get at a 
 constexpr int kVParticlesPerObject = 12;  // V-particles a recognized object keeps at full V-weight
 constexpr double kEstimateDecay = 0.9;    // per frame, of the frame budget's running cost estimates
 constexpr float kMinSeedRayLength = 4.f;  // px: shorter rays at a seed place mean texture, not a region
-
-/// cos and sin of every direction bin.
-struct BinDirections
-{
-  float cos[kDirectionBins];
-  float sin[kDirectionBins];
-  BinDirections()
-  {
-    for (int b = 0; b < kDirectionBins; ++b)
-    {
-      cos[b] = static_cast<float>(std::cos(binToAngle(b)));
-      sin[b] = static_cast<float>(std::sin(binToAngle(b)));
-    }
-  }
-};
-const BinDirections& binDirections()
-{
-  static const BinDirections directions;
-  return directions;
-}
 }  // namespace
 
 Recognizer::Recognizer(const Params& params, std::shared_ptr<const PrototypeMemory> memory)
@@ -359,131 +340,17 @@ void Recognizer::updateV(int v_index, const RadialScanner& scanner)
 }
 
 // The update of every relational particle (v, m): the triangle affine of
-// paper 4.1 and the likelihood of eqs. 5-6.
+// paper 4.1 and the likelihood of eqs. 5-6 (ObservationModel::measure).
 void Recognizer::measureM(int v_index, const float* v_dist, const bool* v_valid)
 {
   const VParticle& v = v_[v_index];
-  const BinDirections& dir = binDirections();
   const std::size_t begin = static_cast<std::size_t>(v_index) * per_v_, end = begin + per_v_;
-
-  // The V-particle's ray end points in the input image.
-  float vf_x[kFeatureRays], vf_y[kFeatureRays];
-  for (int k = 0; k < kFeatureRays; ++k)
-  {
-    const double a = v.theta + k * kFeatureBinStep * kBinAngle;
-    vf_x[k] = static_cast<float>(v.x + v_dist[k] * std::cos(a));
-    vf_y[k] = static_cast<float>(v.y + v_dist[k] * std::sin(a));
-  }
-  float vt_x[3] = {vf_x[0], 0, 0}, vt_y[3] = {vf_y[0], 0, 0};
-  for (int t = 1; t < kTriangleRays; ++t)
-  {
-    const double a = v.theta + t * kTriangleBinStep * kBinAngle;
-    vt_x[t] = static_cast<float>(v.x + v_dist[kFeatureRays + t - 1] * std::cos(a));
-    vt_y[t] = static_cast<float>(v.y + v_dist[kFeatureRays + t - 1] * std::sin(a));
-  }
-  const bool v_triangle = v_valid[0] && v_valid[kFeatureRays] && v_valid[kFeatureRays + 1];
-  int v_invalid_rays = 0;
-  for (int k = 0; k < kFeatureRays; ++k)
-    v_invalid_rays += v_valid[k] ? 0 : 1;
-
-  const float log_invalid = static_cast<float>(observation_.logInvalid());
-  const float all_invalid = kFeatureRays * log_invalid;
-  const float min_area = static_cast<float>(params_.min_triangle_area);
-  const float max_scale = static_cast<float>(params_.max_affine_scale);
-  const bool image_space = params_.deviation_space == DeviationSpace::kImage;
-  const float unit = Prototype::kDistanceUnit;
-
+  // Spec "Motion model": an M-particle that leaves its prototype is re-seeded,
+  // in index order (the update itself draws nothing).
   for (std::size_t i = begin; i < end; ++i)
-  {
-    const Prototype& p = (*memory_)[m_.prototype[i]];
-    // Nearest table pixel (the offset keeps the rounding right for small negative values).
-    int xi = static_cast<int>(m_.x[i] + 1024.5f) - 1024, yi = static_cast<int>(m_.y[i] + 1024.5f) - 1024;
-    if (xi < 0 || yi < 0 || xi >= p.width() || yi >= p.height())
-    {
-      // Spec "Motion model": an M-particle that leaves its prototype is re-seeded.
+    if (!insideTable((*memory_)[m_.prototype[i]], nearestTablePixel(m_.x[i], m_.y[i])))
       seedM(m_, i, m_.prototype[i], v.rays);
-      xi = static_cast<int>(m_.x[i]);
-      yi = static_cast<int>(m_.y[i]);
-    }
-    m_.affine_valid[i] = 0;
-    if (!v_triangle)
-    {
-      m_.log_likelihood[i] = all_invalid;
-      continue;
-    }
-    const int bin = angleToBin(m_.theta[i]);
-    const std::uint8_t* raw = p.rawDistances(xi, yi);
-    float mt_x[3], mt_y[3];
-    bool m_triangle = true;
-    for (int t = 0; t < kTriangleRays; ++t)
-    {
-      const int b = (bin + t * kTriangleBinStep) % kDirectionBins;
-      if (raw[b] == Prototype::kNoEdge)
-      {
-        m_triangle = false;
-        break;
-      }
-      mt_x[t] = xi + raw[b] * unit * dir.cos[b];
-      mt_y[t] = yi + raw[b] * unit * dir.sin[b];
-    }
-    float b_map[6];  // prototype table -> image
-    if (!m_triangle || !affineFromTriangles(mt_x, mt_y, vt_x, vt_y, min_area, min_area, b_map))
-    {
-      m_.log_likelihood[i] = all_invalid;
-      continue;
-    }
-    // A physical print is never mirrored, and its scale stays within bounds.
-    const float det = b_map[0] * b_map[4] - b_map[1] * b_map[3];
-    const float frob = b_map[0] * b_map[0] + b_map[1] * b_map[1] + b_map[3] * b_map[3] + b_map[4] * b_map[4];
-    // Singular values s1 >= s2: s1^2 + s2^2 = frob, s1 s2 = det.
-    const float disc = std::sqrt(std::max(0.f, frob * frob - 4.f * det * det));
-    const float s1 = std::sqrt(0.5f * (frob + disc)), s2 = std::sqrt(std::max(0.f, 0.5f * (frob - disc)));
-    if (det <= 0.f || s1 > max_scale || s2 < 1.f / max_scale)
-    {
-      m_.log_likelihood[i] = all_invalid;
-      continue;
-    }
-    // A = B^-1: input image -> prototype table.
-    const float inv = 1.f / det;
-    const float a0 = b_map[4] * inv, a1 = -b_map[1] * inv, a3 = -b_map[3] * inv, a4 = b_map[0] * inv;
-    const float a2 = -(a0 * b_map[2] + a1 * b_map[5]), a5 = -(a3 * b_map[2] + a4 * b_map[5]);
-    m_.affine[0][i] = a0;
-    m_.affine[1][i] = a1;
-    m_.affine[2][i] = a2;
-    m_.affine[3][i] = a3;
-    m_.affine[4][i] = a4;
-    m_.affine[5][i] = a5;
-    m_.affine_valid[i] = 1;
-
-    // Paper eq. 6 over the 8 feature rays; dw_j of eq. 5 in input px (B p'_j - p_j)
-    // or, as in the paper, in prototype px (p'_j - A p_j).
-    float log_l = v_invalid_rays * log_invalid;
-    for (int k = 0; k < kFeatureRays; ++k)
-    {
-      if (!v_valid[k])
-        continue;
-      const int b = (bin + k * kFeatureBinStep) % kDirectionBins;
-      if (raw[b] == Prototype::kNoEdge)
-      {
-        log_l += log_invalid;
-        continue;
-      }
-      const float qx = xi + raw[b] * unit * dir.cos[b], qy = yi + raw[b] * unit * dir.sin[b];
-      float dx, dy;
-      if (image_space)
-      {
-        dx = b_map[0] * qx + b_map[1] * qy + b_map[2] - vf_x[k];
-        dy = b_map[3] * qx + b_map[4] * qy + b_map[5] - vf_y[k];
-      }
-      else
-      {
-        dx = a0 * vf_x[k] + a1 * vf_y[k] + a2 - qx;
-        dy = a3 * vf_x[k] + a4 * vf_y[k] + a5 - qy;
-      }
-      log_l += observation_.logRayFromSquared(dx * dx + dy * dy);
-    }
-    m_.log_likelihood[i] = log_l;
-  }
+  observation_.measure(*memory_, rayEnds(v, v_dist, v_valid), m_, begin, end);
 }
 
 // SIR over all prototypes of R^-1(v) (paper 3.6), with a share re-seeded
