@@ -47,10 +47,32 @@ inline bool insideTable(const Prototype& prototype, const cv::Point& pixel)
   return pixel.x >= 0 && pixel.y >= 0 && pixel.x < prototype.width() && pixel.y < prototype.height();
 }
 
+/// cos and sin of every direction bin, float.
+struct BinDirections
+{
+  float cos[kDirectionBins];
+  float sin[kDirectionBins];
+  BinDirections();
+};
+
+inline const BinDirections& binDirections()
+{
+  static const BinDirections directions;
+  return directions;
+}
+
 /// Where the ray of direction bin `bin` from table pixel `at` ends, table px,
 /// given the raw distances of `at` (Prototype::rawDistances); false when the
 /// ray meets no edge.
-bool tableRayEnd(const std::uint8_t* raw, const cv::Point& at, int bin, float& x, float& y);
+inline bool tableRayEnd(const std::uint8_t* raw, const cv::Point& at, int bin, float& x, float& y)
+{
+  if (raw[bin] == Prototype::kNoEdge)
+    return false;
+  const BinDirections& dir = binDirections();
+  x = at.x + raw[bin] * Prototype::kDistanceUnit * dir.cos[bin];
+  y = at.y + raw[bin] * Prototype::kDistanceUnit * dir.sin[bin];
+  return true;
+}
 
 /// The end points of the three triangle rays (bins `bin`, +120 deg, +240 deg)
 /// of an M-particle at table pixel `at`; false when one meets no edge.

@@ -6,29 +6,14 @@
 
 namespace amcr
 {
-namespace
+BinDirections::BinDirections()
 {
-/// cos and sin of every direction bin, float.
-struct BinDirections
-{
-  float cos[kDirectionBins];
-  float sin[kDirectionBins];
-  BinDirections()
+  for (int b = 0; b < kDirectionBins; ++b)
   {
-    for (int b = 0; b < kDirectionBins; ++b)
-    {
-      cos[b] = static_cast<float>(std::cos(binToAngle(b)));
-      sin[b] = static_cast<float>(std::sin(binToAngle(b)));
-    }
+    cos[b] = static_cast<float>(std::cos(binToAngle(b)));
+    sin[b] = static_cast<float>(std::sin(binToAngle(b)));
   }
-};
-
-const BinDirections& binDirections()
-{
-  static const BinDirections directions;
-  return directions;
 }
-}  // namespace
 
 VRayEnds rayEnds(const VParticle& v, const float* distance, const bool* valid)
 {
@@ -51,16 +36,6 @@ VRayEnds rayEnds(const VParticle& v, const float* distance, const bool* valid)
   }
   ends.triangle_valid = valid[0] && valid[kFeatureRays] && valid[kFeatureRays + 1];
   return ends;
-}
-
-bool tableRayEnd(const std::uint8_t* raw, const cv::Point& at, int bin, float& x, float& y)
-{
-  if (raw[bin] == Prototype::kNoEdge)
-    return false;
-  const BinDirections& dir = binDirections();
-  x = at.x + raw[bin] * Prototype::kDistanceUnit * dir.cos[bin];
-  y = at.y + raw[bin] * Prototype::kDistanceUnit * dir.sin[bin];
-  return true;
 }
 
 bool tableTriangle(const std::uint8_t* raw, const cv::Point& at, int bin, float x[kTriangleRays],
