@@ -77,7 +77,7 @@ cv::Point2d vRayEnd(const amcr::VParticle& v, double angle, double distance)
   return {v.x + distance * std::cos(v.theta + angle), v.y + distance * std::sin(v.theta + angle)};
 }
 
-/// Where table ray `bin` from `at` ends, or (-1, -1) when it meets no edge.
+/// Where table ray `bin` (any multiple of a turn added) from `at` ends; false when it meets no edge.
 bool tableEnd(const amcr::Prototype& p, const cv::Point& at, int bin, cv::Point2d& end)
 {
   const float d = p.distance(at.x, at.y, bin % amcr::kDirectionBins);
@@ -172,9 +172,9 @@ Reference reference(const amcr::Params& p, const amcr::Prototype& prototype, con
   return r;
 }
 
-/// A random V-particle measurement. Half of them are the M-particle's own
-/// table scans, scaled and with noise (as a V-particle on the object sees
-/// them, so that most affines pass); the others are random distances.
+/// A random V-particle measurement: in 70 % of the cases the scans of table
+/// pixel `at` and bin `bin`, scaled and with noise (as a V-particle on the
+/// object sees them, so that many affines pass), else random distances.
 VMeasurement randomMeasurement(std::mt19937_64& gen, const amcr::Prototype& prototype, const cv::Point& at, int bin,
                                double max_scale)
 {
@@ -240,23 +240,16 @@ struct SweepCounts
 class RelationalUpdate : public ::testing::Test
 {
 protected:
-  static void SetUpTestSuite()
-  {
-    memory_ = amcr_test::drawnMemory(amcr_test::allShapes());
-  }
+  static void SetUpTestSuite() { memory_ = amcr_test::drawnMemory(amcr_test::allShapes()); }
   static std::shared_ptr<const amcr::PrototypeMemory> memory_;
 };
 std::shared_ptr<const amcr::PrototypeMemory> RelationalUpdate::memory_;
 
-/// Compares one V-particle's update of `count` M-particles with the reference.
-void compareOneV(const amcr::Params& p, const amcr::PrototypeMemory& memory, std::mt19937_64& gen, int count,
-                 SweepCounts& counts)
+/// `count` M-particles: the odd ones anywhere in their tables, the even ones
+/// within 2 px and 0.15 rad of the first (a cloud around a pose).
+amcr::MParticleSet randomMParticles(std::mt19937_64& gen, const amcr::PrototypeMemory& memory, int count)
 {
-  const amcr::ObservationModel model(p);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  // The M-particles: the odd ones anywhere in their tables, the even ones
-  // within 2 px and 0.15 rad of the first (a cloud around a pose); the V
-  // measurement is made from the first one.
   amcr::MParticleSet m;
   m.resize(count);
   for (int i = 0; i < count; ++i)
@@ -274,10 +267,55 @@ void compareOneV(const amcr::Params& p, const amcr::PrototypeMemory& memory, std
       m.theta[i] = m.theta[0] + static_cast<float>(0.3 * unit(gen) - 0.15);
     }
   }
+  return m;
+}
+
+/// For an M-particle both accept: A against the reference's, then eq. 5 ray
+/// by ray through the model's named pieces.
+void compareAcceptedParticle(const amcr::Params& p, const amcr::ObservationModel& model,
+                             const amcr::Prototype& prototype, const amcr::MParticleSet& m, int i,
+                             const amcr::VRayEnds& ends, const Reference& r)
+{
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const cv::Point2d e(ends.feature_x[k], ends.feature_y[k]);
+    const cv::Vec3d want = r.image_to_table * cv::Vec3d(e.x, e.y, 1);
+    const double gx = m.affine[0][i] * e.x + m.affine[1][i] * e.y + m.affine[2][i];
+    const double gy = m.affine[3][i] * e.x + m.affine[4][i] * e.y + m.affine[5][i];
+    ASSERT_LT(std::hypot(gx - want[0], gy - want[1]), kAffineTolerance * std::max(1.0, cv::norm(want)))
+        << describe(p) << ", particle " << i << ", ray " << k;
+  }
+  const cv::Point at = amcr::nearestTablePixel(m.x[i], m.y[i]);
+  const int bin = amcr::angleToBin(m.theta[i]);
+  const std::uint8_t* raw = prototype.rawDistances(at.x, at.y);
+  float tx[kTriangleRays], ty[kTriangleRays];
+  amcr::RelationalAffine affine;
+  ASSERT_TRUE(amcr::tableTriangle(raw, at, bin, tx, ty));
+  ASSERT_TRUE(amcr::fitRelationalAffine(tx, ty, ends, static_cast<float>(p.min_triangle_area),
+                                        static_cast<float>(p.max_affine_scale), affine));
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    float qx, qy;
+    if (r.deviation[k] < 0 ||
+        !amcr::tableRayEnd(raw, at, (bin + k * amcr::kFeatureBinStep) % amcr::kDirectionBins, qx, qy))
+      continue;
+    const float dw2 = amcr::squaredDeviation(affine, p.deviation_space, qx, qy, ends.feature_x[k], ends.feature_y[k]);
+    ASSERT_NEAR(std::sqrt(dw2), r.deviation[k], kDeviationTolerance * std::max(1.0, r.deviation[k] / 100))
+        << describe(p) << ", particle " << i << ", ray " << k;
+    ASSERT_NEAR(model.logRayFromSquared(dw2), r.ray_term[k], kRayTermTolerance)
+        << describe(p) << ", particle " << i << ", ray " << k << ", dw " << r.deviation[k];
+  }
+}
+
+/// Compares one V-particle's update of `count` M-particles with the reference.
+void compareOneV(const amcr::Params& p, const amcr::PrototypeMemory& memory, std::mt19937_64& gen, int count,
+                 SweepCounts& counts)
+{
+  const amcr::ObservationModel model(p);
+  amcr::MParticleSet m = randomMParticles(gen, memory, count);
   const cv::Point first_at = amcr::nearestTablePixel(m.x[0], m.y[0]);
   const VMeasurement z =
       randomMeasurement(gen, memory[m.prototype[0]], first_at, amcr::angleToBin(m.theta[0]), p.max_affine_scale);
-
   const amcr::VRayEnds ends = amcr::rayEnds(z.v, z.distance, z.valid);
   for (int k = 0; k < kFeatureRays; ++k)
   {
@@ -302,39 +340,10 @@ void compareOneV(const amcr::Params& p, const amcr::PrototypeMemory& memory, std
     }
     (r.accepted ? counts.accepted : counts.refused)++;
     ASSERT_NEAR(m.log_likelihood[i], r.log_likelihood, kLogLikelihoodTolerance) << describe(p) << ", particle " << i;
-    if (!r.accepted)
-      continue;
-    // A: the stored map takes the V ray ends where the reference's does.
-    for (int k = 0; k < kFeatureRays; ++k)
-    {
-      const cv::Point2d e(ends.feature_x[k], ends.feature_y[k]);
-      const cv::Vec3d want = r.image_to_table * cv::Vec3d(e.x, e.y, 1);
-      const double gx = m.affine[0][i] * e.x + m.affine[1][i] * e.y + m.affine[2][i];
-      const double gy = m.affine[3][i] * e.x + m.affine[4][i] * e.y + m.affine[5][i];
-      ASSERT_LT(std::hypot(gx - want[0], gy - want[1]), kAffineTolerance * std::max(1.0, cv::norm(want)))
-          << describe(p) << ", particle " << i << ", ray " << k;
-    }
-    // Eq. 5 ray by ray, through the model's named pieces.
-    const cv::Point at = amcr::nearestTablePixel(m.x[i], m.y[i]);
-    const int bin = amcr::angleToBin(m.theta[i]);
-    const std::uint8_t* raw = prototype.rawDistances(at.x, at.y);
-    float tx[kTriangleRays], ty[kTriangleRays];
-    amcr::RelationalAffine affine;
-    ASSERT_TRUE(amcr::tableTriangle(raw, at, bin, tx, ty));
-    ASSERT_TRUE(amcr::fitRelationalAffine(tx, ty, ends, static_cast<float>(p.min_triangle_area),
-                                          static_cast<float>(p.max_affine_scale), affine));
-    for (int k = 0; k < kFeatureRays; ++k)
-    {
-      float qx, qy;
-      if (r.deviation[k] < 0 ||
-          !amcr::tableRayEnd(raw, at, (bin + k * amcr::kFeatureBinStep) % amcr::kDirectionBins, qx, qy))
-        continue;
-      const float dw2 = amcr::squaredDeviation(affine, p.deviation_space, qx, qy, ends.feature_x[k], ends.feature_y[k]);
-      ASSERT_NEAR(std::sqrt(dw2), r.deviation[k], kDeviationTolerance * std::max(1.0, r.deviation[k] / 100))
-          << describe(p) << ", particle " << i << ", ray " << k;
-      ASSERT_NEAR(model.logRayFromSquared(dw2), r.ray_term[k], kRayTermTolerance)
-          << describe(p) << ", particle " << i << ", ray " << k << ", dw " << r.deviation[k];
-    }
+    if (r.accepted)
+      compareAcceptedParticle(p, model, prototype, m, i, ends, r);
+    if (::testing::Test::HasFatalFailure())
+      return;
   }
 }
 
