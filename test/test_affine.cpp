@@ -279,4 +279,79 @@ TEST(AffineHelpers, ScalesAreTheSingularValues)
   EXPECT_NEAR(smallest, 0.5, 1e-9);
   EXPECT_NEAR(largest, 3.0, 1e-9);
 }
+
+/// A linear part R(a) diag(s1, flip * s2) R(b) with a translation, as float row-major 2x3.
+void floatAffine(double a, double b, double s1, double s2, bool flip, float out[6])
+{
+  const cv::Matx22d l = cv::Matx22d(std::cos(a), -std::sin(a), std::sin(a), std::cos(a)) *
+                        cv::Matx22d(s1, 0, 0, flip ? -s2 : s2) *
+                        cv::Matx22d(std::cos(b), -std::sin(b), std::sin(b), std::cos(b));
+  const double values[6] = {l(0, 0), l(0, 1), 120.0, l(1, 0), l(1, 1), -35.0};
+  for (int i = 0; i < 6; ++i)
+    out[i] = static_cast<float>(values[i]);
+}
+
+// The hot loop's scale check: a mirror is refused, and so is a singular
+// value outside [1 / max_scale, max_scale]; decisions follow the exact
+// singular values except within 1e-5 (relative) of a bound.
+TEST(AffineHelpers, FloatScaleCheckRefusesMirrorsAndScalesOutOfBounds)
+{
+  std::mt19937_64 gen(31);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), log_scale(std::log(0.05), std::log(20.0)), coin(0.0, 1.0);
+  int accepted = 0, refused = 0;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const double s1 = std::exp(log_scale(gen)), s2 = std::exp(log_scale(gen));
+    const bool flip = coin(gen) < 0.3;
+    const float max_scale = trial % 2 == 0 ? 8.f : 1.5f;
+    float a[6];
+    floatAffine(angle(gen), angle(gen), s1, s2, flip, a);
+    const double largest = std::max(s1, s2), smallest = std::min(s1, s2);
+    const bool expected = !flip && largest <= max_scale && smallest >= 1.0 / max_scale;
+    const double margin = std::min(std::abs(largest / max_scale - 1), std::abs(smallest * max_scale - 1));
+    if (margin < 1e-5)
+      continue;
+    EXPECT_EQ(amcr::affineScaleAccepted(a, max_scale), expected)
+        << "trial " << trial << ": s " << s1 << ", " << s2 << (flip ? " mirrored" : "") << ", max_scale " << max_scale;
+    (expected ? accepted : refused)++;
+  }
+  EXPECT_GT(accepted, 1000);
+  EXPECT_GT(refused, 1000);
+  // The bounds themselves are accepted: both singular values exactly 2, and 0.5.
+  const float two[6] = {2, 0, 0, 0, 2, 0}, half[6] = {0.5f, 0, 0, 0, 0.5f, 0};
+  EXPECT_TRUE(amcr::affineScaleAccepted(two, 2.f));
+  EXPECT_TRUE(amcr::affineScaleAccepted(half, 2.f));
+  const float mirror[6] = {1, 0, 0, 0, -1, 0}, singular[6] = {1, 2, 0, 2, 4, 0};
+  EXPECT_FALSE(amcr::affineScaleAccepted(mirror, 2.f));
+  EXPECT_FALSE(amcr::affineScaleAccepted(singular, 2.f));
+}
+
+// The float inverse equals the double one within float precision, and
+// refuses a singular map without touching its output.
+TEST(AffineHelpers, FloatInverseMatchesTheDoubleInverse)
+{
+  std::mt19937_64 gen(37);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), log_scale(std::log(0.2), std::log(5.0)), coin(0.0, 1.0);
+  for (int trial = 0; trial < 2000; ++trial)
+  {
+    float a[6], inverse[6];
+    floatAffine(angle(gen), angle(gen), std::exp(log_scale(gen)), std::exp(log_scale(gen)), coin(gen) < 0.3, a);
+    Affine exact_inverse;
+    ASSERT_TRUE(amcr::invertAffine(Affine(a[0], a[1], a[2], a[3], a[4], a[5]), exact_inverse));
+    ASSERT_TRUE(amcr::invertAffine(a, inverse));
+    for (int i = 0; i < 6; ++i)
+    {
+      // Condition number up to 25: 1e-5 relative to the entry or, for a
+      // translation, to the terms it sums (which may cancel).
+      const double magnitude = i % 3 != 2 ? std::abs(exact_inverse.val[i])
+                                          : std::abs(exact_inverse.val[i - 2] * a[2]) + std::abs(exact_inverse.val[i - 1] * a[5]);
+      EXPECT_NEAR(inverse[i], exact_inverse.val[i], 1e-5 * std::max(1.0, magnitude)) << "trial " << trial << " entry " << i;
+    }
+  }
+  const float singular[6] = {1, 2, 5, 2, 4, 7};
+  float out[6] = {7, 7, 7, 7, 7, 7};
+  EXPECT_FALSE(amcr::invertAffine(singular, out));
+  for (float v : out)
+    EXPECT_EQ(v, 7.f) << "`inverse` changed on refusal";
+}
 }  // namespace

@@ -1,11 +1,16 @@
 // The observation model O (paper eqs. 5-6) against hand-computed values.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "amcr/observation_model.h"
 #include "amcr/params.h"
+#include "amcr/prototype.h"
+#include "amcr/relational_update.h"
+#include "scene_drawing.h"
 
 namespace
 {
@@ -101,22 +106,78 @@ TEST(ObservationModel, LogInvalidIsLogPInvalid)
   }
 }
 
+/// A relational particle whose deviations are known: an M-particle at a
+/// pixel of a drawn star where all 8 feature rays meet an edge, the identity
+/// affine (B = A = I), and V-particle rays ending dw[k] px to the right of
+/// the table's ray k. Both deviation spaces then see dw[k] on ray k.
+class KnownDeviations
+{
+public:
+  KnownDeviations() : prototype_("star", amcr_test::drawPrototype(amcr_test::ShapeId::kStar), 128, 40.0, 1.0)
+  {
+    const std::vector<cv::Point>& interior = prototype_.interior();
+    at_ = interior[interior.size() / 2];
+    raw_ = prototype_.rawDistances(at_.x, at_.y);
+    const float identity[6] = {1, 0, 0, 0, 1, 0};
+    std::copy(identity, identity + 6, affine_.table_to_image);
+    std::copy(identity, identity + 6, affine_.image_to_table);
+  }
+
+  /// Whether every feature ray of the M-particle meets an edge (the premise).
+  bool allTableRaysValid() const
+  {
+    for (int k = 0; k < amcr::kFeatureRays; ++k)
+      if (raw_[k * amcr::kFeatureBinStep] == amcr::Prototype::kNoEdge)
+        return false;
+    return true;
+  }
+
+  /// The model's eq. 6 for V rays valid[k] with deviations dw[k] (px).
+  float logLikelihood(const amcr::ObservationModel& model, const float* dw, const bool* valid) const
+  {
+    amcr::VRayEnds v;
+    for (int k = 0; k < amcr::kFeatureRays; ++k)
+    {
+      float x = 0.f, y = 0.f;
+      amcr::tableRayEnd(raw_, at_, k * amcr::kFeatureBinStep, x, y);
+      v.feature_x[k] = x + dw[k];
+      v.feature_y[k] = y;
+      v.feature_valid[k] = valid[k];
+      v.invalid_feature_rays += valid[k] ? 0 : 1;
+    }
+    return model.logLikelihood(v, raw_, at_, 0, affine_);
+  }
+
+private:
+  amcr::Prototype prototype_;
+  cv::Point at_;
+  const std::uint8_t* raw_ = nullptr;
+  amcr::RelationalAffine affine_;
+};
+
 // Paper eq. 6: log p(z | x) = sum over valid rays of log p(dw_j) + n_invalid * log p_invalid.
 // 8 rays, 3 invalid; valid dw = 0, 5, 10, 20, 50 (paper form):
 //   -1.99580060 - 2.02733589 - 2.10556078 - 2.25513691 - 2.30258375 + 3 * log(0.1)
 //   = -10.68641793 - 6.90775528 = -17.59417321
 TEST(ObservationModel, LogLikelihoodIsEq6)
 {
-  const amcr::ObservationModel model(paperParams());
-  const float dw[8] = {0.f, 123.f, 5.f, 10.f, 77.f, 20.f, 50.f, 0.f};
-  const bool valid[8] = {true, false, true, true, false, true, true, false};
-  // The dw of invalid rays is junk and must be ignored. Tolerance 8 * 1e-3:
-  // the model may use its tabulated per-ray term (logRayFromSquared).
-  EXPECT_NEAR(model.logLikelihood(dw, valid, 8), -17.59417321, 8e-3);
+  const KnownDeviations known;
+  ASSERT_TRUE(known.allTableRaysValid());
+  for (amcr::DeviationSpace space : {amcr::DeviationSpace::kImage, amcr::DeviationSpace::kPrototype})
+  {
+    amcr::Params params = paperParams();
+    params.deviation_space = space;
+    const amcr::ObservationModel model(params);
+    const float dw[8] = {0.f, 123.f, 5.f, 10.f, 77.f, 20.f, 50.f, 0.f};
+    const bool valid[8] = {true, false, true, true, false, true, true, false};
+    // The dw of invalid rays is junk and must be ignored. Tolerance 8 * 1e-3:
+    // the model uses its tabulated per-ray term (logRayFromSquared).
+    EXPECT_NEAR(known.logLikelihood(model, dw, valid), -17.59417321, 8e-3) << amcr::toString(space);
 
-  // All invalid: 8 * log(0.1).
-  const bool none[8] = {false, false, false, false, false, false, false, false};
-  EXPECT_NEAR(model.logLikelihood(dw, none, 8), 8 * std::log(0.1), 1e-9);
+    // All invalid: 8 * log(0.1), summed in float (1e-5 is a few float ulps here).
+    const bool none[8] = {false, false, false, false, false, false, false, false};
+    EXPECT_NEAR(known.logLikelihood(model, dw, none), 8 * std::log(0.1), 1e-5) << amcr::toString(space);
+  }
 
   // Against the model's own logRay for random rays, paper and mixture forms.
   for (amcr::LikelihoodForm form : {amcr::LikelihoodForm::kPaper, amcr::LikelihoodForm::kMixture})
@@ -138,7 +199,7 @@ TEST(ObservationModel, LogLikelihoodIsEq6)
         v[j] = (state >> 3) % 4 != 0;
         expected += v[j] ? m.logRay(d[j]) : std::log(0.07);
       }
-      EXPECT_NEAR(m.logLikelihood(d, v, 8), expected, 8e-3) << amcr::toString(form) << " trial " << trial;
+      EXPECT_NEAR(known.logLikelihood(m, d, v), expected, 8e-3) << amcr::toString(form) << " trial " << trial;
     }
   }
 }

@@ -14,9 +14,19 @@ using Affine = cv::Matx23d;
 /// `min_area` (px^2 in its own image): collinear or coincident points give no A.
 bool affineFromTriangles(const cv::Point2d src[3], const cv::Point2d dst[3], double min_area, Affine& out);
 
-/// Float version for the hot loop; the same contract.
+/// Float version for the hot loop; the same contract. `out` is row-major 2x3
+/// (m00 m01 m02 m10 m11 m12).
 bool affineFromTriangles(const float src_x[3], const float src_y[3], const float dst_x[3], const float dst_y[3],
                          float min_src_area, float min_dst_area, float out[6]);
+
+/// Float, for the hot loop: whether the linear part of `a` (row-major 2x3)
+/// could be a physical print's: not mirrored (det > 0) and both singular
+/// values within [1 / max_scale, max_scale].
+bool affineScaleAccepted(const float a[6], float max_scale);
+
+/// Float inverse for the hot loop (row-major 2x3); returns false, leaving
+/// `inverse` untouched, when `a` is singular or not finite.
+bool invertAffine(const float a[6], float inverse[6]);
 
 /// Inverse of an affine map; returns false when it is singular.
 bool invertAffine(const Affine& a, Affine& inverse);

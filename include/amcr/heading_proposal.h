@@ -11,8 +11,20 @@
 
 namespace amcr
 {
+/// Cost of a feature ray valid on one side only, squared log units.
+constexpr float kHeadingMismatchPenalty = 0.5f;
+
+/// How badly the feature rays of direction bin `bin` at table pixel (x, y)
+/// of `prototype` match `signature`: the squared deviation of the
+/// log-distance differences from their mean (the mean absorbs the scale),
+/// plus kHeadingMismatchPenalty per ray valid on one side only. The proposal
+/// minimises it, coarse to fine.
+float headingCost(const Prototype& prototype, int x, int y, const RaySignature& signature, int bin);
+
 /// The direction bin at table pixel (x, y) of `prototype` whose feature rays
 /// best match `signature` up to scale; -1 when the signature has fewer than
-/// 3 valid rays (nothing to match: choose at random).
+/// 3 valid rays (nothing to match: choose at random). Coarse to fine: the
+/// best of every third bin, then the best of the bins around it; not always
+/// the minimum over all 72 bins (test_heading_proposal.cpp says how close).
 int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature);
 }  // namespace amcr

@@ -1,20 +1,32 @@
-// The observation model O of Radial-AMCR (paper eqs. 5-6), in log space.
+// The observation model O of Radial-AMCR (paper eqs. 5-6), in log space, and
+// the relational update that applies it: for each M-particle m of a
+// V-particle v, the triangle affine of (v, m) (paper 4.1) and log p(z_v | m).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "amcr/params.h"
 
 namespace amcr
 {
+class PrototypeMemory;
+struct MParticleSet;
+struct RelationalAffine;
+struct VRayEnds;
+
 class ObservationModel
 {
 public:
-  /// Reads sigma_w, p_outlier, p_invalid, likelihood_form and max_ray_length.
+  /// Reads sigma_w, p_outlier, p_invalid, likelihood_form, max_ray_length,
+  /// min_triangle_area, max_affine_scale and deviation_space.
   explicit ObservationModel(const Params& params);
 
   /// log p(dw) of one valid ray with deviation dw px (paper eq. 5, or the
-  /// normalised mixture).
+  /// normalised mixture): the definition the fast path tabulates.
   double logRay(double dw) const;
 
   /// log p_invalid, the term of a ray with no edge on either side (eq. 6).
@@ -32,9 +44,21 @@ public:
     return table_[i] + f * (table_[i + 1] - table_[i]);
   }
 
-  /// log p(z | x) of eq. 6 for `n` rays: valid[j] says whether both rays met
-  /// an edge, dw[j] is the deviation of a valid ray.
-  double logLikelihood(const float* dw, const bool* valid, int n) const;
+  /// The relational update (paper 3.6): for M-particles [begin, end) of `m`,
+  /// all of V-particle `v`'s, writes affine and affine_valid (A, when the
+  /// triangle fit of paper 4.1 is accepted) and log_likelihood (eq. 6; the
+  /// value of 8 invalid rays when there is no A). Every one of them must lie
+  /// inside its prototype's table (insideTable of relational_update.h; the
+  /// caller re-seeds the others first), else InputError. Draws nothing.
+  void measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
+               std::size_t end) const;
+
+  /// log p(z_v | m) of eq. 6 over the 8 feature rays, for an M-particle at
+  /// table pixel `at` and direction bin `bin` (raw: its table distances)
+  /// whose relational affine is `affine`: p_invalid for a ray that is
+  /// invalid in v or in the table, eq. 5 (tabulated) for the others.
+  float logLikelihood(const VRayEnds& v, const std::uint8_t* raw, const cv::Point& at, int bin,
+                      const RelationalAffine& affine) const;
 
 private:
   double sigma_w_;
@@ -44,5 +68,8 @@ private:
   float log_far_;
   float inv_step_;
   std::vector<float> table_;
+  float min_triangle_area_;
+  float max_affine_scale_;
+  DeviationSpace deviation_space_;
 };
 }  // namespace amcr

@@ -116,10 +116,6 @@ private:
   /// Scans the V-particle's rays (refreshing v.rays) and updates its
   /// M-particles by eqs. 5-6 (particle_filter_measurement.cpp).
   void measure(int v_index, const RadialScanner& scanner);
-  /// The relational update of M-particles [begin, end) of `v` from its ray
-  /// distances (8 feature rays, then the 2 further triangle rays).
-  void measureRelational(const VParticle& v, const float* v_dist, const bool* v_valid, std::size_t begin,
-                         std::size_t end);
   void accumulateEvidence(int v_index);
   void resampleM(int v_index);
   /// Places M-particle `index` of m_scratch_ at the pose leading hypothesis

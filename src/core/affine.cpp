@@ -1,5 +1,6 @@
 #include "amcr/affine.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace amcr
@@ -57,6 +58,33 @@ bool affineFromTriangles(const float src_x[3], const float src_y[3], const float
   out[4] = d10 * i01 + d11 * i11;
   out[2] = dst_x[0] - out[0] * src_x[0] - out[1] * src_y[0];
   out[5] = dst_y[0] - out[3] * src_x[0] - out[4] * src_y[0];
+  return true;
+}
+
+// The singular values s1 >= s2 of the linear part L in closed form:
+// s1^2 + s2^2 = |L|_F^2 and s1 s2 = det L.
+bool affineScaleAccepted(const float a[6], float max_scale)
+{
+  const float det = a[0] * a[4] - a[1] * a[3];
+  const float frob = a[0] * a[0] + a[1] * a[1] + a[3] * a[3] + a[4] * a[4];
+  const float disc = std::sqrt(std::max(0.f, frob * frob - 4.f * det * det));
+  const float s1 = std::sqrt(0.5f * (frob + disc)), s2 = std::sqrt(std::max(0.f, 0.5f * (frob - disc)));
+  return !(det <= 0.f || s1 > max_scale || s2 < 1.f / max_scale);
+}
+
+bool invertAffine(const float a[6], float inverse[6])
+{
+  const float det = a[0] * a[4] - a[1] * a[3];
+  if (det == 0.f || !std::isfinite(det))
+    return false;
+  const float inv = 1.f / det;
+  const float i0 = a[4] * inv, i1 = -a[1] * inv, i3 = -a[3] * inv, i4 = a[0] * inv;
+  inverse[0] = i0;
+  inverse[1] = i1;
+  inverse[2] = -(i0 * a[2] + i1 * a[5]);
+  inverse[3] = i3;
+  inverse[4] = i4;
+  inverse[5] = -(i3 * a[2] + i4 * a[5]);
   return true;
 }
 

@@ -1,5 +1,6 @@
 #include "amcr/heading_proposal.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -8,8 +9,7 @@ namespace amcr
 {
 namespace
 {
-constexpr float kMismatchPenalty = 0.5f;  // a ray valid on one side only, in squared log units
-constexpr int kCoarseBinStep = 3;         // bins between the headings of the coarse pass
+constexpr int kCoarseBinStep = 3;  // bins between the headings of the coarse pass
 
 /// log of every raw table value (distance in units of Prototype::kDistanceUnit).
 const std::array<float, 256>& logTable()
@@ -26,9 +26,22 @@ const std::array<float, 256>& logTable()
 
 namespace
 {
-/// How badly the feature rays of direction bin `bin` match the signature:
-/// the squared deviation of the log-distance differences from their mean
-/// (the mean absorbs the scale), plus a penalty per validity mismatch.
+/// The signature's log distances and validity.
+struct LogSignature
+{
+  float log[kFeatureRays];
+  bool valid[kFeatureRays];
+  explicit LogSignature(const RaySignature& signature)
+  {
+    for (int k = 0; k < kFeatureRays; ++k)
+    {
+      valid[k] = signature.distance[k] > 0.f;
+      log[k] = valid[k] ? std::log(std::max(0.25f, signature.distance[k])) : 0.f;
+    }
+  }
+};
+
+/// headingCost (heading_proposal.h) on the raw table distances of a pixel.
 float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bool* v_valid)
 {
   const std::array<float, 256>& logs = logTable();
@@ -40,7 +53,7 @@ float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bo
     const bool m_valid = d != Prototype::kNoEdge;
     if (m_valid != v_valid[k])
     {
-      cost += kMismatchPenalty;
+      cost += kHeadingMismatchPenalty;
       continue;
     }
     if (!m_valid)
@@ -54,17 +67,19 @@ float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bo
 }
 }  // namespace
 
+float headingCost(const Prototype& prototype, int x, int y, const RaySignature& signature, int bin)
+{
+  const LogSignature v(signature);
+  return headingCost(prototype.rawDistances(x, y), bin, v.log, v.valid);
+}
+
 int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature)
 {
   if (signature.valid_rays() < 3)
     return -1;
-  float v_log[kFeatureRays];
-  bool v_valid[kFeatureRays];
-  for (int k = 0; k < kFeatureRays; ++k)
-  {
-    v_valid[k] = signature.distance[k] > 0.f;
-    v_log[k] = v_valid[k] ? std::log(std::max(0.25f, signature.distance[k])) : 0.f;
-  }
+  const LogSignature v(signature);
+  const float* v_log = v.log;
+  const bool* v_valid = v.valid;
   const std::uint8_t* raw = prototype.rawDistances(x, y);
   // Coarse to fine: every third bin (15 degrees), then the bins around the best.
   int best_bin = 0;

@@ -1,6 +1,13 @@
 #include "amcr/observation_model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "amcr/errors.h"
+#include "amcr/particles.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/relational_update.h"
 
 namespace amcr
 {
@@ -15,6 +22,9 @@ ObservationModel::ObservationModel(const Params& params)
   , outlier_density_(params.likelihood_form == LikelihoodForm::kPaper ? params.p_outlier
                                                                        : params.p_outlier / params.max_ray_length)
   , log_invalid_(std::log(std::max(params.p_invalid, 1e-300)))
+  , min_triangle_area_(static_cast<float>(params.min_triangle_area))
+  , max_affine_scale_(static_cast<float>(params.max_affine_scale))
+  , deviation_space_(params.deviation_space)
 {
   const double max_squared = 64.0 * sigma_w_ * sigma_w_;
   const double step = max_squared / (kTableEntries - 1);
@@ -33,12 +43,56 @@ double ObservationModel::logRay(double dw) const
   return std::log(std::max(outlier_density_ + (1.0 - p_outlier_) * gauss, 1e-300));
 }
 
-// Paper eq. 6: the product over valid rays of p(dw_j) times p_invalid per invalid ray.
-double ObservationModel::logLikelihood(const float* dw, const bool* valid, int n) const
+void ObservationModel::measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
+                               std::size_t end) const
 {
-  double sum = 0.0;
-  for (int j = 0; j < n; ++j)
-    sum += valid[j] ? logRay(dw[j]) : log_invalid_;
-  return sum;
+  const float all_invalid = kFeatureRays * static_cast<float>(log_invalid_);
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    const Prototype& p = memory[m.prototype[i]];
+    const cv::Point at = nearestTablePixel(m.x[i], m.y[i]);
+    if (!insideTable(p, at))
+      throw InputError("ObservationModel::measure: M-particle " + std::to_string(i) + " lies outside the table of '" +
+                       p.label() + "'");
+    m.affine_valid[i] = 0;
+    m.log_likelihood[i] = all_invalid;
+    if (!v.triangle_valid)
+      continue;
+    const int bin = angleToBin(m.theta[i]);
+    const std::uint8_t* raw = p.rawDistances(at.x, at.y);
+    float table_x[kTriangleRays], table_y[kTriangleRays];
+    RelationalAffine affine;
+    if (!tableTriangle(raw, at, bin, table_x, table_y) ||
+        !fitRelationalAffine(table_x, table_y, v, min_triangle_area_, max_affine_scale_, affine))
+      continue;
+    for (int e = 0; e < 6; ++e)
+      m.affine[e][i] = affine.image_to_table[e];
+    m.affine_valid[i] = 1;
+    m.log_likelihood[i] = logLikelihood(v, raw, at, bin, affine);
+  }
+}
+
+// Paper eq. 6: the product over the feature rays of p(dw_j) (eq. 5) for a ray
+// valid on both sides, p_invalid for the others; summed in logs.
+float ObservationModel::logLikelihood(const VRayEnds& v, const std::uint8_t* raw, const cv::Point& at, int bin,
+                                      const RelationalAffine& affine) const
+{
+  const float log_invalid = static_cast<float>(log_invalid_);
+  float log_l = v.invalid_feature_rays * log_invalid;
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    if (!v.feature_valid[k])
+      continue;
+    float table_x, table_y;
+    if (!tableRayEnd(raw, at, (bin + k * kFeatureBinStep) % kDirectionBins, table_x, table_y))
+    {
+      log_l += log_invalid;
+      continue;
+    }
+    const float dw_squared =
+        squaredDeviation(affine, deviation_space_, table_x, table_y, v.feature_x[k], v.feature_y[k]);
+    log_l += logRayFromSquared(dw_squared);
+  }
+  return log_l;
 }
 }  // namespace amcr
