@@ -18,37 +18,44 @@ RecognizerRos::RecognizerRos(ros::NodeHandle nh, ros::NodeHandle private_nh,
                              std::function<std::uint32_t()> overlay_subscribers)
   : nh_(nh), private_nh_(private_nh)
 {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    try
-    {
-      std::vector<std::string> notes;
-      params_ = loadParams(private_nh_, &notes);
-      for (const std::string& note : notes)
-        ROS_DEBUG("parameter: %s", note.c_str());
-    }
-    catch (const std::exception& e)
-    {
-      params_ = amcr::Params();
-      ROS_ERROR("invalid parameters, using the defaults of config/amcr.yaml instead: %s", e.what());
-    }
+  loadStartupState();
+  advertise(std::move(overlay_subscribers));
+}
 
-    pub_prototypes_ = private_nh_.advertise<amcr::PrototypeTable>("prototypes", 1, true);
-    std::string directory;
-    private_nh_.param<std::string>("prototypes", directory, "");
-    if (directory.empty())
-      ROS_ERROR("no prototypes: set ~prototypes to a directory of silhouette images, or call %s",
-                private_nh_.resolveName("load_prototypes").c_str());
-    else
-    {
-      const std::string error = loadLocked(directory);
-      if (!error.empty())
-        ROS_ERROR("%s; the nodelet keeps running: call %s with a valid directory", error.c_str(),
-                  private_nh_.resolveName("load_prototypes").c_str());
-    }
-    publishPrototypeTable();
+void RecognizerRos::loadStartupState()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  try
+  {
+    std::vector<std::string> notes;
+    params_ = loadParams(private_nh_, &notes);
+    for (const std::string& note : notes)
+      ROS_DEBUG("parameter: %s", note.c_str());
+  }
+  catch (const std::exception& e)
+  {
+    params_ = amcr::Params();
+    ROS_ERROR("invalid parameters, using the defaults of config/amcr.yaml instead: %s", e.what());
   }
 
+  pub_prototypes_ = private_nh_.advertise<amcr::PrototypeTable>("prototypes", 1, true);
+  std::string directory;
+  private_nh_.param<std::string>("prototypes", directory, "");
+  if (directory.empty())
+    ROS_ERROR("no prototypes: set ~prototypes to a directory of silhouette images, or call %s",
+              private_nh_.resolveName("load_prototypes").c_str());
+  else
+  {
+    const std::string error = loadLocked(directory);
+    if (!error.empty())
+      ROS_ERROR("%s; the nodelet keeps running: call %s with a valid directory", error.c_str(),
+                private_nh_.resolveName("load_prototypes").c_str());
+  }
+  publishPrototypeTable();
+}
+
+void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers)
+{
   // dynamic_reconfigure starts from the parameters loaded above (~config included), not from the .cfg defaults.
   reconfigure_server_ =
       std::make_unique<dynamic_reconfigure::Server<amcr::AMCRConfig>>(reconfigure_mutex_, private_nh_);

@@ -77,6 +77,10 @@ public:
   amcr::Params params() const;
 
 private:
+  /// The parameters and the memory of ~prototypes, logged when invalid; publishes the label table.
+  void loadStartupState();
+  /// The reconfigure server, /diagnostics and the services.
+  void advertise(std::function<std::uint32_t()> overlay_subscribers);
   /// The one reset path (lock held): `replacement` (a new filter, fresh by construction) takes the
   /// place of the current one, or the current one is reset; the input's time and the statistics'
   /// frame sequence start again.

@@ -107,7 +107,9 @@ TEST_F(RecognizerRosTest, MessagesKeepTheCoreOrderAndTime)
       EXPECT_EQ(out.message.objects[i].score, out.result.objects[i].score);
       EXPECT_FALSE(out.message.objects[i].pose_valid);
       if (i > 0)
+      {
         EXPECT_GE(out.result.objects[i - 1].score, out.result.objects[i].score) << "not best score first";
+      }
     }
     seen_objects = !out.result.objects.empty();
   }
