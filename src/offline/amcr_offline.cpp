@@ -3,7 +3,6 @@
 // command line, the output and the exit codes.
 //
 // Only this file decides exit codes: the library and the helpers throw.
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -169,7 +168,6 @@ int run(const RunnerOptions& options)
       continue;
     }
     amcr::RecognitionResult result;
-    const auto start = std::chrono::steady_clock::now();
     try
     {
       result = recognizer.step(frame.image);
@@ -178,9 +176,7 @@ int run(const RunnerOptions& options)
     {
       throw amcr::InputError("frame " + std::to_string(frame.index) + " (" + frame.name + "): " + e.what());
     }
-    const double time_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    writeJsonLine(*out, frameJson(frame.index, time_ms, result), destination);
+    writeJsonLine(*out, frameJson(frame.index, result), destination);
     if (overlay)
       overlay->write(amcr::drawOverlay(frame.image, recognizer, result));
     ++processed;

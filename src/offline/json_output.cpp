@@ -166,10 +166,10 @@ std::string jsonNumber(double value, int decimals)
   return text;
 }
 
-std::string frameJson(long frame, double time_ms, const RecognitionResult& result)
+std::string frameJson(long frame, const RecognitionResult& result)
 {
   std::string out = "{\"frame\": " + std::to_string(frame);
-  out += ", \"time_ms\": " + jsonNumber(time_ms, kTimeDecimals);
+  out += ", \"time_ms\": " + jsonNumber(result.time_ms, kTimeDecimals);
   out += ", \"iteration\": " + std::to_string(result.iteration);
   out += ", \"iterations\": " + jsonNumber(result.iterations, kShareDecimals);
   out += ", \"objects\": [";

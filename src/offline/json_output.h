@@ -33,9 +33,10 @@ std::string jsonString(const std::string& text);
 /// infinities, which JSON cannot hold, are written as null.
 std::string jsonNumber(double value, int decimals);
 
-/// The line of a processed frame (without the newline). `time_ms` is the
-/// time the recognition step took.
-std::string frameJson(long frame, double time_ms, const RecognitionResult& result);
+/// The line of a processed frame (without the newline): "time_ms" is the
+/// result's own (the time the recognition step took), the objects keep the
+/// result's order (best score first).
+std::string frameJson(long frame, const RecognitionResult& result);
 
 /// The line of a frame that could not be read: no step ran, `iteration` is
 /// the recognizer's unchanged count, "skipped" gives the reason.

@@ -1,7 +1,5 @@
 #include "message_conversion.h"
 
-#include <algorithm>
-
 #include <geometry_msgs/Point32.h>
 
 namespace amcr_ros
@@ -57,13 +55,8 @@ amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::
   msg.iteration = result.iteration;
   msg.iterations = result.iterations;
   msg.processing_ms = result.time_ms;
-  std::vector<const amcr::RecognizedObject*> sorted;
-  for (const amcr::RecognizedObject& o : result.objects)
-    sorted.push_back(&o);
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [](const amcr::RecognizedObject* a, const amcr::RecognizedObject* b) { return a->score > b->score; });
-  for (const amcr::RecognizedObject* o : sorted)
-    msg.objects.push_back(toMsg(*o));
+  for (const amcr::RecognizedObject& o : result.objects)  // the core's order: best score first
+    msg.objects.push_back(toMsg(o));
   return msg;
 }
 

@@ -17,7 +17,8 @@ namespace amcr_ros
 /// One object; pose_valid false and the identity pose (the pose is filled elsewhere).
 amcr::Recognition toMsg(const amcr::RecognizedObject& object);
 
-/// A whole result, with the input image's header; objects sorted by score, best first.
+/// A whole result, with the input image's header: the objects in the core's order (best score first),
+/// processing_ms the core's time_ms.
 amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::Header& header);
 
 /// The label table of a memory (empty when `memory` is null).

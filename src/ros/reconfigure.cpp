@@ -1,38 +1,72 @@
 #include "reconfigure.h"
 
+#include <memory>
+
+#include "amcr/errors.h"
+
 namespace amcr_ros
 {
-// The numeric fields of cfg/AMCR.cfg (test/test_reconfigure_table.cpp checks
-// that they are exactly amcr::parameterTable()).
-#define AMCR_RECONFIGURE_FIELDS(X)                                                                             \
-  X(num_v_particles) X(m_particles_per_prototype) X(prototype_size) X(max_ray_length) X(edge_threshold)        \
-  X(blur_sigma) X(sigma_w) X(p_outlier) X(p_invalid) X(min_triangle_area) X(max_affine_scale) X(v_step)        \
-  X(motion_noise_translation) X(motion_noise_rotation) X(reflection_jitter) X(v_resample_interval)             \
-  X(v_reseed_fraction) X(m_reseed_fraction) X(injection_fraction) X(seed_enclosure_rays) X(seed_attempts)      \
-  X(cluster_radius) X(cluster_min_share) X(group_tolerance) X(min_support) X(refine_iterations)                \
-  X(refine_search) X(decision_threshold) X(min_object_size) X(optical_flow) X(flow_window) X(flow_levels) \
-  X(flow_max_error) X(frame_budget_ms) X(seed)
+namespace
+{
+template <class T>
+using Field = amcr::AMCRConfig::ParamDescription<T>;
+
+template <class T>
+const Field<T>* asField(const amcr::AMCRConfig::AbstractParamDescriptionConstPtr& description)
+{
+  return dynamic_cast<const Field<T>*>(description.get());
+}
+
+/// The parameters of cfg/AMCR.cfg, in its order: the generated descriptions
+/// name each one and point at its member of amcr::AMCRConfig.
+const std::vector<amcr::AMCRConfig::AbstractParamDescriptionConstPtr>& configFields()
+{
+  return amcr::AMCRConfig::__getParamDescriptions__();
+}
+
+/// The string parameters of amcr::Params (the numeric ones are in amcr::parameterTable()).
+std::string textParameter(const amcr::Params& params, const std::string& name)
+{
+  if (name == "likelihood_form")
+    return amcr::toString(params.likelihood_form);
+  if (name == "deviation_space")
+    return amcr::toString(params.deviation_space);
+  if (name == "prototype_priors")
+    return amcr::formatPriors(params.prototype_priors);
+  throw amcr::ParameterError("cfg/AMCR.cfg has the string parameter '" + name + "', which amcr::Params does not know");
+}
+}  // namespace
 
 amcr::AMCRConfig toConfig(const amcr::Params& params)
 {
   amcr::AMCRConfig config = amcr::AMCRConfig::__getDefault__();
-#define AMCR_TO_CONFIG(name) config.name = static_cast<decltype(config.name)>(amcr::getParameter(params, #name));
-  AMCR_RECONFIGURE_FIELDS(AMCR_TO_CONFIG)
-#undef AMCR_TO_CONFIG
-  config.likelihood_form = amcr::toString(params.likelihood_form);
-  config.deviation_space = amcr::toString(params.deviation_space);
-  config.prototype_priors = amcr::formatPriors(params.prototype_priors);
+  for (const auto& d : configFields())
+  {
+    if (const auto* f = asField<int>(d))
+      config.*(f->field) = static_cast<int>(amcr::getParameter(params, d->name));
+    else if (const auto* f = asField<double>(d))
+      config.*(f->field) = amcr::getParameter(params, d->name);
+    else if (const auto* f = asField<bool>(d))
+      config.*(f->field) = static_cast<bool>(amcr::getParameter(params, d->name));
+    else if (const auto* f = asField<std::string>(d))
+      config.*(f->field) = textParameter(params, d->name);
+  }
   return config;
 }
 
 amcr::Params fromConfig(const amcr::AMCRConfig& config, amcr::Params params)
 {
-#define AMCR_FROM_CONFIG(name) amcr::setParameter(params, #name, static_cast<double>(config.name));
-  AMCR_RECONFIGURE_FIELDS(AMCR_FROM_CONFIG)
-#undef AMCR_FROM_CONFIG
-  amcr::setParameter(params, "likelihood_form", config.likelihood_form);
-  amcr::setParameter(params, "deviation_space", config.deviation_space);
-  amcr::setParameter(params, "prototype_priors", config.prototype_priors);
+  for (const auto& d : configFields())
+  {
+    if (const auto* f = asField<int>(d))
+      amcr::setParameter(params, d->name, static_cast<double>(config.*(f->field)));
+    else if (const auto* f = asField<double>(d))
+      amcr::setParameter(params, d->name, config.*(f->field));
+    else if (const auto* f = asField<bool>(d))
+      amcr::setParameter(params, d->name, static_cast<double>(config.*(f->field)));
+    else if (const auto* f = asField<std::string>(d))
+      amcr::setParameter(params, d->name, config.*(f->field));
+  }
   return params;
 }
 
@@ -40,5 +74,21 @@ bool tablesDiffer(const amcr::Params& a, const amcr::Params& b)
 {
   return a.prototype_size != b.prototype_size || a.edge_threshold != b.edge_threshold ||
          a.blur_sigma != b.blur_sigma;
+}
+
+std::string describeChanges(const amcr::Params& before, const amcr::Params& after)
+{
+  std::string out;
+  for (const amcr::ParameterInfo& info : amcr::parameterTable())
+  {
+    const double was = amcr::getParameter(before, info.name), is = amcr::getParameter(after, info.name);
+    if (was != is)
+      out += (out.empty() ? "" : ", ") + info.name + " " + std::to_string(was) + " -> " + std::to_string(is);
+  }
+  if (after.likelihood_form != before.likelihood_form)
+    out += (out.empty() ? "" : ", ") + std::string("likelihood_form ") + amcr::toString(after.likelihood_form);
+  if (after.deviation_space != before.deviation_space)
+    out += (out.empty() ? "" : ", ") + std::string("deviation_space ") + amcr::toString(after.deviation_space);
+  return out;
 }
 }  // namespace amcr_ros

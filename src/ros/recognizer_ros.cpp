@@ -1,0 +1,293 @@
+#include "recognizer_ros.h"
+
+#include <exception>
+#include <vector>
+
+#include <cv_bridge/cv_bridge.h>
+
+#include "amcr/overlay.h"
+#include "image_input.h"
+#include "message_conversion.h"
+#include "parameter_loading.h"
+#include "reconfigure.h"
+#include <amcr/PrototypeTable.h>
+
+namespace amcr_ros
+{
+RecognizerRos::RecognizerRos(ros::NodeHandle nh, ros::NodeHandle private_nh,
+                             std::function<std::uint32_t()> overlay_subscribers)
+  : nh_(nh), private_nh_(private_nh)
+{
+  loadStartupState();
+  advertise(std::move(overlay_subscribers));
+}
+
+void RecognizerRos::loadStartupState()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  try
+  {
+    std::vector<std::string> notes;
+    params_ = loadParams(private_nh_, &notes);
+    for (const std::string& note : notes)
+      ROS_DEBUG("parameter: %s", note.c_str());
+  }
+  catch (const std::exception& e)
+  {
+    params_ = amcr::Params();
+    ROS_ERROR("invalid parameters, using the defaults of config/amcr.yaml instead: %s", e.what());
+  }
+
+  pub_prototypes_ = private_nh_.advertise<amcr::PrototypeTable>("prototypes", 1, true);
+  std::string directory;
+  private_nh_.param<std::string>("prototypes", directory, "");
+  if (directory.empty())
+    ROS_ERROR("no prototypes: set ~prototypes to a directory of silhouette images, or call %s",
+              private_nh_.resolveName("load_prototypes").c_str());
+  else
+  {
+    const std::string error = loadLocked(directory);
+    if (!error.empty())
+      ROS_ERROR("%s; the nodelet keeps running: call %s with a valid directory", error.c_str(),
+                private_nh_.resolveName("load_prototypes").c_str());
+  }
+  publishPrototypeTable();
+}
+
+void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers)
+{
+  // dynamic_reconfigure starts from the parameters loaded above (~config included), not from the .cfg defaults.
+  reconfigure_server_ =
+      std::make_unique<dynamic_reconfigure::Server<amcr::AMCRConfig>>(reconfigure_mutex_, private_nh_);
+  reconfigure_server_->updateConfig(toConfig(params()));
+  reconfigure_server_->setCallback(
+      [this](amcr::AMCRConfig& config, std::uint32_t level) { reconfigure(config, level); });
+
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh_, private_nh_, private_nh_.getNamespace());
+  updater_->setHardwareID("none");
+  updater_->add("recognizer", [this, overlay_subscribers](diagnostic_updater::DiagnosticStatusWrapper& status) {
+    stats_.report(status);
+    status.add("overlay subscribers", overlay_subscribers ? overlay_subscribers() : 0u);
+  });
+  diagnostics_timer_ = private_nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
+    try
+    {
+      updater_->update();
+    }
+    catch (const std::exception& e)
+    {
+      ROS_ERROR_THROTTLE(60.0, "diagnostics: %s", e.what());
+    }
+  });
+
+  srv_reset_ = private_nh_.advertiseService<std_srvs::Empty::Request, std_srvs::Empty::Response>(
+      "reset", [this](std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+        reset();
+        return true;
+      });
+  srv_load_ = private_nh_.advertiseService<amcr::LoadPrototypes::Request, amcr::LoadPrototypes::Response>(
+      "load_prototypes", [this](amcr::LoadPrototypes::Request& request, amcr::LoadPrototypes::Response& response) {
+        response = loadPrototypes(request.directory);
+        return true;  // the answer carries the error: the call itself succeeded
+      });
+}
+
+void RecognizerRos::restart(std::unique_ptr<amcr::Recognizer> replacement)
+{
+  if (replacement)
+    recognizer_ = std::move(replacement);
+  else if (recognizer_)
+    recognizer_->reset();
+  last_stamp_ = ros::Time();
+  stats_.restarted();
+}
+
+void RecognizerRos::reset()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  restart();
+  ROS_INFO("filter reset");
+}
+
+std::string RecognizerRos::loadLocked(const std::string& directory)
+{
+  try
+  {
+    std::vector<std::string> warnings;
+    auto memory = std::make_shared<amcr::PrototypeMemory>(amcr::PrototypeMemory::loadDirectory(
+        directory, params_, [&warnings](const std::string& w) { warnings.push_back(w); }));
+    for (const std::string& w : warnings)
+      ROS_WARN("prototypes: %s", w.c_str());
+    std::unique_ptr<amcr::Recognizer> replacement;
+    if (recognizer_)
+      recognizer_->setMemory(memory);  // the same recognizer: track ids go on counting
+    else
+      replacement = std::make_unique<amcr::Recognizer>(params_, memory);
+    memory_ = memory;
+    memory_directory_ = directory;
+    restart(std::move(replacement));
+    ROS_INFO("loaded %zu prototypes from '%s'", memory->size(), directory.c_str());
+    stats_.setPrototypes(memory->size(), "");
+    return "";
+  }
+  catch (const std::exception& e)
+  {
+    const std::string error = "cannot load prototypes from '" + directory + "': " + e.what();
+    if (!memory_)
+      stats_.setPrototypes(0, error);
+    return error;
+  }
+}
+
+amcr::LoadPrototypes::Response RecognizerRos::loadPrototypes(const std::string& directory)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  amcr::LoadPrototypes::Response response;
+  response.message = loadLocked(directory);
+  response.success = response.message.empty();
+  response.num_prototypes = response.success ? static_cast<int>(memory_->size()) : 0;
+  if (response.success)
+    publishPrototypeTable();
+  else
+    ROS_ERROR("%s (the previous memory stays in use)", response.message.c_str());
+  return response;
+}
+
+std::string RecognizerRos::reconfigure(amcr::AMCRConfig& config, std::uint32_t level)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  try
+  {
+    amcr::Params changed = fromConfig(config, params_);
+    changed.validate();
+    const std::string what = describeChanges(params_, changed);
+    if (what.empty())
+      return "";  // the initial call, or nothing new
+    std::shared_ptr<const amcr::PrototypeMemory> memory = memory_;
+    if (memory && ((level & kReconfigureTables) || tablesDiffer(changed, params_)))
+      memory = std::make_shared<amcr::PrototypeMemory>(amcr::PrototypeMemory::loadDirectory(
+          memory_directory_, changed, [](const std::string& w) { ROS_WARN("prototypes: %s", w.c_str()); }));
+    const bool tables_rebuilt = memory != memory_;
+    std::unique_ptr<amcr::Recognizer> rebuilt;
+    if (memory)
+      rebuilt = std::make_unique<amcr::Recognizer>(changed, memory);
+    // Nothing failed: swap everything at once.
+    params_ = changed;
+    memory_ = memory;
+    restart(std::move(rebuilt));  // null only while no memory is loaded: then there is no filter either
+    ROS_INFO("reconfigured (%s): %s", what.c_str(),
+             !memory_ ? "no prototypes loaded yet"
+                      : tables_rebuilt ? "prototype tables and filter rebuilt" : "filter rebuilt");
+    return "";
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR("reconfiguration refused, the previous parameters stay: %s", e.what());
+    config = toConfig(params_);  // what is in use is what the client sees
+    return e.what();
+  }
+}
+
+amcr::Params RecognizerRos::params() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return params_;
+}
+
+void RecognizerRos::followInput(const ros::Time& stamp, const cv::Size& size)
+{
+  if (!last_stamp_.isZero() && stamp < last_stamp_)
+  {
+    ROS_WARN("time went backwards (%.3f s -> %.3f s; a looped bag?): filter reset", last_stamp_.toSec(),
+             stamp.toSec());
+    restart();
+  }
+  last_stamp_ = stamp;
+  if (last_size_ != size)
+  {
+    if (!last_size_.empty())  // the recognizer re-seeds its V-particles itself
+      ROS_INFO("image size changed from %d x %d to %d x %d: V-particles re-seeded", last_size_.width,
+               last_size_.height, size.width, size.height);
+    last_size_ = size;
+  }
+}
+
+bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_overlay, Frame& frame)
+{
+  try
+  {
+    stats_.received(msg->header.seq);
+    std::string why;
+    cv_bridge::CvImageConstPtr image = toCoreImage(msg, why);
+    if (!image)
+    {
+      stats_.skipped();
+      reportInputError("image skipped: " + why);
+      return false;
+    }
+
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!recognizer_)
+    {
+      stats_.skipped();
+      ROS_ERROR_THROTTLE(5.0, "no prototypes loaded: images are ignored until %s succeeds",
+                         private_nh_.resolveName("load_prototypes").c_str());
+      return false;
+    }
+    followInput(msg->header.stamp, image->image.size());
+    frame.result = recognizer_->step(image->image);
+    frame.message = toMsg(frame.result, msg->header);
+    frame.memory = memory_;
+    stats_.processed(frame.message, {frame.result.converged_v_particles, params_.num_v_particles,
+                                     frame.result.flow_failures, params_.frame_budget_ms});
+    if (draw_overlay)
+    {
+      try
+      {
+        frame.overlay = amcr::drawOverlay(image->image, *recognizer_, frame.result);
+        stats_.overlayDrawn();
+      }
+      catch (const std::exception& e)  // the recognitions stand
+      {
+        reportSkipped(*msg, e.what());
+      }
+    }
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    reportSkipped(*msg, e.what());
+  }
+  catch (...)
+  {
+    stats_.skipped();
+    ROS_ERROR_THROTTLE(5.0, "image skipped: unknown error");
+  }
+  return false;
+}
+
+void RecognizerRos::reportSkipped(const sensor_msgs::Image& msg, const std::string& why)
+{
+  stats_.skipped();
+  try
+  {
+    reportInputError("image (" + std::to_string(msg.width) + " x " + std::to_string(msg.height) + ", '" +
+                     msg.encoding + "') skipped: " + why);
+  }
+  catch (...)  // nothing may leave a callback: it would take the manager down
+  {
+  }
+}
+
+void RecognizerRos::publishPrototypeTable()
+{
+  pub_prototypes_.publish(toMsg(memory_.get(), memory_directory_, ros::Time::now()));
+}
+
+void RecognizerRos::reportInputError(const std::string& text)
+{
+  std::lock_guard<std::mutex> lock(report_mutex_);
+  if (input_errors_.shouldReport(text))
+    ROS_ERROR("%s", text.c_str());
+}
+}  // namespace amcr_ros

@@ -1,0 +1,118 @@
+// The recognizer as a ROS component, without the nodelet: parameters, the
+// prototype memory, the amcr::Recognizer, reset, reload and reconfiguration,
+// all under one lock, constructed from plain node handles (so that a test can
+// drive it, test/ros/test_recognizer_ros.cpp). The nodelet
+// (recognizer_nodelet.h) adds the image subscription and the output topics.
+//
+// Advertises (private): ~prototypes (amcr/PrototypeTable, latched), ~reset (std_srvs/Empty),
+//                       ~load_prototypes (amcr/LoadPrototypes), dynamic_reconfigure (cfg/AMCR.cfg), and
+//                       the "recognizer" status on /diagnostics.
+// Parameters (private): ~prototypes (directory), ~config (YAML file), every key of config/amcr.yaml.
+//
+// Every reset goes through restart(): ~reset, a reload of the memory, a
+// reconfiguration and time going backwards in the input all call it. No
+// method throws.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <boost/thread/recursive_mutex.hpp>
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
+#include <opencv2/core.hpp>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <std_srvs/Empty.h>
+
+#include "amcr/params.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/recognizer.h"
+#include "recognizer_stats.h"
+#include "report_throttle.h"
+#include <amcr/AMCRConfig.h>
+#include <amcr/LoadPrototypes.h>
+#include <amcr/Recognitions.h>
+
+namespace amcr_ros
+{
+class RecognizerRos
+{
+public:
+  /// Reads the parameters (invalid ones are logged and the defaults used), loads ~prototypes when set
+  /// (a failure is logged: images are skipped until a load succeeds) and advertises the services.
+  /// `overlay_subscribers` counts the subscribers of the overlay for /diagnostics (none when empty).
+  RecognizerRos(ros::NodeHandle nh, ros::NodeHandle private_nh,
+                std::function<std::uint32_t()> overlay_subscribers = {});
+
+  /// What one image gave.
+  struct Frame
+  {
+    amcr::RecognitionResult result;  ///< the core's result: objects best score first, its time_ms
+    amcr::Recognitions message;      ///< the same with the image's header; no poses yet
+    std::shared_ptr<const amcr::PrototypeMemory> memory;  ///< the memory the objects refer to
+    cv::Mat overlay;                 ///< bgr8, only when asked for
+  };
+
+  /// Runs the recognizer on one image (and draws the overlay when `draw_overlay`). False when the
+  /// image was skipped: bad input or no prototypes, logged (throttled) and counted.
+  bool process(const sensor_msgs::ImageConstPtr& msg, bool draw_overlay, Frame& frame);
+
+  /// ~reset: the filter starts again from the next image.
+  void reset();
+  /// ~load_prototypes: loads a memory and swaps it in (the filter restarts), or keeps the previous one
+  /// and says why. Publishes the label table on success.
+  amcr::LoadPrototypes::Response loadPrototypes(const std::string& directory);
+  /// dynamic_reconfigure: rebuilds the filter (and the tables when `level` or the parameters ask for it)
+  /// with `config`. Returns the error, empty on success; on an error `config` becomes the configuration
+  /// in use and nothing changes.
+  std::string reconfigure(amcr::AMCRConfig& config, std::uint32_t level);
+
+  /// An image that failed after process() returned (publishing): logged and counted as skipped.
+  void reportSkipped(const sensor_msgs::Image& msg, const std::string& why);
+
+  amcr::Params params() const;
+
+private:
+  /// The parameters and the memory of ~prototypes, logged when invalid; publishes the label table.
+  void loadStartupState();
+  /// The reconfigure server, /diagnostics and the services.
+  void advertise(std::function<std::uint32_t()> overlay_subscribers);
+  /// The one reset path (lock held): `replacement` (a new filter, fresh by construction) takes the
+  /// place of the current one, or the current one is reset; the input's time and the statistics'
+  /// frame sequence start again.
+  void restart(std::unique_ptr<amcr::Recognizer> replacement = nullptr);
+  /// Loads a memory and swaps it in (lock held). Returns the error text, empty on success.
+  std::string loadLocked(const std::string& directory);
+  /// Resets when time goes backwards in the input; notes a change of image size (lock held).
+  void followInput(const ros::Time& stamp, const cv::Size& size);
+  void publishPrototypeTable();  // lock held
+  /// An error about an input, at most every 5 s per distinct text.
+  void reportInputError(const std::string& text);
+
+  ros::NodeHandle nh_, private_nh_;
+  ros::Publisher pub_prototypes_;
+  RecognizerStats stats_;
+
+  std::mutex report_mutex_;
+  ReportThrottle input_errors_{5.0};  // per problem text, seconds
+
+  mutable std::mutex mutex_;  // everything below
+  amcr::Params params_;
+  std::shared_ptr<const amcr::PrototypeMemory> memory_;
+  std::string memory_directory_;
+  std::unique_ptr<amcr::Recognizer> recognizer_;  // null while no memory is loaded
+  ros::Time last_stamp_;
+  cv::Size last_size_;
+
+  // Last: their callbacks use everything above.
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<amcr::AMCRConfig>> reconfigure_server_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer diagnostics_timer_;
+  ros::ServiceServer srv_reset_, srv_load_;
+};
+}  // namespace amcr_ros

@@ -1,0 +1,172 @@
+// amcr_ros::RecognizerRos on its own (no nodelet, no topics in between): built
+// from plain node handles against the rostest master, fed drawn images through
+// process(), and reset, reloaded and reconfigured through its methods.
+#include <memory>
+#include <string>
+
+#include <cv_bridge/cv_bridge.h>
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <ros/ros.h>
+#include <sensor_msgs/image_encodings.h>
+
+#include "../scene_drawing.h"
+#include "reconfigure.h"
+#include "recognizer_ros.h"
+
+namespace
+{
+using amcr_test::ShapeId;
+using amcr_ros::RecognizerRos;
+
+class RecognizerRosTest : public testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    for (ShapeId id : {ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar})
+      cv::imwrite(dir_.file(amcr_test::shapeName(id) + ".png"), amcr_test::drawPrototype(id));
+    scene_.objects = {{ShapeId::kArrow,
+                       amcr_test::makeAffine(amcr_test::prototypeCentre(), {320.0, 240.0}, 0.5, 1.1, 0.9, 0.15), 35.0}};
+    scene_.clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
+    clean_ = amcr_test::renderClean(scene_);
+  }
+
+  /// A RecognizerRos in its own private namespace, started with `prototypes` (may be empty).
+  std::unique_ptr<RecognizerRos> make(const std::string& prototypes)
+  {
+    const std::string name = "~recognizer_" + std::to_string(instances_++);
+    ros::NodeHandle private_nh(name);
+    private_nh.setParam("config", std::string(AMCR_SOURCE_DIR) + "/config/amcr.yaml");
+    private_nh.setParam("seed", 1);
+    private_nh.setParam("prototypes", prototypes);
+    return std::make_unique<RecognizerRos>(ros::NodeHandle(), private_nh);
+  }
+
+  /// The next frame of the scene, mono8, `seconds` after the start (the stream's clock).
+  sensor_msgs::ImageConstPtr frame(double seconds)
+  {
+    std_msgs::Header header;
+    header.stamp = ros::Time(1000.0 + seconds);
+    header.frame_id = "camera";
+    const cv::Mat image = amcr_test::addNoise(clean_, scene_.clutter.noise_sigma, noise_seed_++);
+    return cv_bridge::CvImage(header, sensor_msgs::image_encodings::MONO8, image).toImageMsg();
+  }
+
+  /// Processes the frame at `seconds`; the iteration it reports.
+  long step(RecognizerRos& recognizer, double seconds)
+  {
+    RecognizerRos::Frame out;
+    EXPECT_TRUE(recognizer.process(frame(seconds), false, out));
+    return out.message.iteration;
+  }
+
+  amcr_test::TempDir dir_;
+  amcr_test::Scene scene_;
+  cv::Mat clean_;
+  std::uint64_t noise_seed_ = 1000;
+  static int instances_;
+};
+int RecognizerRosTest::instances_ = 0;
+
+TEST_F(RecognizerRosTest, SkipsImagesUntilALoadSucceeds)
+{
+  auto recognizer = make(dir_.file("missing"));
+  RecognizerRos::Frame out;
+  EXPECT_FALSE(recognizer->process(frame(0.0), false, out)) << "an image processed without prototypes";
+
+  const amcr::LoadPrototypes::Response bad = recognizer->loadPrototypes(dir_.file("no_such_directory"));
+  EXPECT_FALSE(bad.success);
+  EXPECT_NE(bad.message.find("no_such_directory"), std::string::npos) << bad.message;
+
+  const amcr::LoadPrototypes::Response good = recognizer->loadPrototypes(dir_.path());
+  ASSERT_TRUE(good.success) << good.message;
+  EXPECT_EQ(good.num_prototypes, 3);
+  EXPECT_EQ(step(*recognizer, 0.1), 1);
+}
+
+// The message mirrors the core's result: its objects in the core's order (best
+// score first) and its time; the overlay only when asked for.
+TEST_F(RecognizerRosTest, MessagesKeepTheCoreOrderAndTime)
+{
+  auto recognizer = make(dir_.path());
+  bool seen_objects = false;
+  for (int k = 0; k < 100 && !seen_objects; ++k)
+  {
+    RecognizerRos::Frame out;
+    ASSERT_TRUE(recognizer->process(frame(0.1 * k), false, out));
+    EXPECT_TRUE(out.overlay.empty());
+    ASSERT_TRUE(out.memory);
+    EXPECT_EQ(out.message.processing_ms, out.result.time_ms);
+    EXPECT_EQ(out.message.header.frame_id, "camera");
+    ASSERT_EQ(out.message.objects.size(), out.result.objects.size());
+    for (std::size_t i = 0; i < out.result.objects.size(); ++i)
+    {
+      EXPECT_EQ(out.message.objects[i].label, out.result.objects[i].label);
+      EXPECT_EQ(out.message.objects[i].track_id, out.result.objects[i].track_id);
+      EXPECT_EQ(out.message.objects[i].score, out.result.objects[i].score);
+      EXPECT_FALSE(out.message.objects[i].pose_valid);
+      if (i > 0)
+      {
+        EXPECT_GE(out.result.objects[i - 1].score, out.result.objects[i].score) << "not best score first";
+      }
+    }
+    seen_objects = !out.result.objects.empty();
+  }
+  EXPECT_TRUE(seen_objects) << "the arrow was not recognized within 100 frames";
+
+  RecognizerRos::Frame drawn;
+  ASSERT_TRUE(recognizer->process(frame(20.0), true, drawn));
+  EXPECT_EQ(drawn.overlay.type(), CV_8UC3);
+  EXPECT_GT(drawn.overlay.cols, clean_.cols);
+}
+
+// ~reset, a reload, a reconfiguration and time going backwards all restart the filter.
+TEST_F(RecognizerRosTest, EveryResetRestartsTheFilter)
+{
+  auto recognizer = make(dir_.path());
+  EXPECT_EQ(step(*recognizer, 0.0), 1);
+  EXPECT_EQ(step(*recognizer, 0.1), 2);
+
+  recognizer->reset();
+  EXPECT_EQ(step(*recognizer, 0.2), 1);
+  EXPECT_EQ(step(*recognizer, 0.3), 2);
+
+  EXPECT_EQ(step(*recognizer, 0.1), 1) << "time went backwards without a reset";
+  EXPECT_EQ(step(*recognizer, 0.4), 2);
+
+  ASSERT_TRUE(recognizer->loadPrototypes(dir_.path()).success);
+  EXPECT_EQ(step(*recognizer, 0.5), 1);
+  EXPECT_EQ(step(*recognizer, 0.6), 2);
+
+  amcr::AMCRConfig config = amcr_ros::toConfig(recognizer->params());
+  config.num_v_particles = 40;
+  EXPECT_EQ(recognizer->reconfigure(config, 0), "");
+  EXPECT_EQ(recognizer->params().num_v_particles, 40);
+  EXPECT_EQ(step(*recognizer, 0.7), 1);
+}
+
+// A value out of range is refused naming it; the configuration in use stays, and so does the filter.
+TEST_F(RecognizerRosTest, ReconfigureRefusesAnInvalidValueNamingIt)
+{
+  auto recognizer = make(dir_.path());
+  EXPECT_EQ(step(*recognizer, 0.0), 1);
+  amcr::AMCRConfig config = amcr_ros::toConfig(recognizer->params());
+  config.sigma_w = 0.0;
+  config.num_v_particles = 40;
+  const std::string error = recognizer->reconfigure(config, 0);
+  EXPECT_NE(error.find("sigma_w"), std::string::npos) << error;
+  EXPECT_EQ(config.sigma_w, 5.0) << "the refused value is still shown";
+  EXPECT_EQ(config.num_v_particles, 60);
+  EXPECT_EQ(recognizer->params().num_v_particles, 60);
+  EXPECT_EQ(step(*recognizer, 0.1), 2) << "a refused reconfiguration restarted the filter";
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_recognizer_ros");
+  ros::NodeHandle nh;  // keeps the node up between the tests
+  return RUN_ALL_TESTS();
+}
