@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -353,5 +354,38 @@ TEST(AffineHelpers, FloatInverseMatchesTheDoubleInverse)
   EXPECT_FALSE(amcr::invertAffine(singular, out));
   for (float v : out)
     EXPECT_EQ(v, 7.f) << "`inverse` changed on refusal";
+}
+// The least-squares fit (used by the outline refinement and the ORB baseline):
+// exact on noise-free points, refused where the points fix no affine.
+TEST(FitAffine, RecoversRandomAffinesFromManyPoints)
+{
+  std::mt19937_64 gen(11);
+  std::uniform_real_distribution<double> x(0.0, 639.0), y(0.0, 479.0);
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    const Affine truth = randomAffine(gen);
+    std::vector<cv::Point2d> from, to;
+    for (int i = 0; i < 3 + trial % 20; ++i)
+    {
+      from.emplace_back(x(gen), y(gen));
+      to.push_back(amcr::applyAffine(truth, from.back()));
+    }
+    Affine fitted;
+    if (std::abs(twiceArea(from.data())) < 2.0 * 500.0)
+      continue;  // three nearly collinear points: not a test of the fit
+    ASSERT_TRUE(amcr::fitAffine(from, to, fitted)) << "trial " << trial;
+    EXPECT_LT(maxAbsDiff(fitted, truth), 1e-6) << "trial " << trial;
+  }
+}
+
+TEST(FitAffine, RefusesTooFewCollinearOrMismatchedPoints)
+{
+  Affine out = amcr::identityAffine();
+  const std::vector<cv::Point2d> two = {{0, 0}, {10, 0}};
+  EXPECT_FALSE(amcr::fitAffine(two, two, out));
+  const std::vector<cv::Point2d> line = {{0, 0}, {10, 10}, {20, 20}, {30, 30}};
+  EXPECT_FALSE(amcr::fitAffine(line, line, out));
+  const std::vector<cv::Point2d> three = {{0, 0}, {10, 0}, {0, 10}};
+  EXPECT_FALSE(amcr::fitAffine(three, line, out));
 }
 }  // namespace

@@ -6,29 +6,6 @@
 
 namespace amcr_bench
 {
-bool fitAffine(const std::vector<cv::Point2d>& from, const std::vector<cv::Point2d>& to, cv::Matx23d& out)
-{
-  if (from.size() < 3 || from.size() != to.size())
-    return false;
-  cv::Mat a(static_cast<int>(from.size()), 3, CV_64F);
-  cv::Mat b(static_cast<int>(from.size()), 2, CV_64F);
-  for (int i = 0; i < a.rows; ++i)
-  {
-    a.at<double>(i, 0) = from[i].x;
-    a.at<double>(i, 1) = from[i].y;
-    a.at<double>(i, 2) = 1.0;
-    b.at<double>(i, 0) = to[i].x;
-    b.at<double>(i, 1) = to[i].y;
-  }
-  cv::Mat x;
-  if (!cv::solve(a, b, x, cv::DECOMP_SVD))
-    return false;
-  for (int r = 0; r < 2; ++r)
-    for (int c = 0; c < 3; ++c)
-      out(r, c) = x.at<double>(c, r);
-  return std::abs(out(0, 0) * out(1, 1) - out(0, 1) * out(1, 0)) > 1e-9;
-}
-
 cv::Mat normalisedPrototype(const cv::Mat& mask, int longer, int border, cv::Matx23d& to_original)
 {
   const double scale = static_cast<double>(longer) / std::max(mask.cols, mask.rows);

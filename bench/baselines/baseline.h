@@ -36,10 +36,6 @@ public:
   virtual std::vector<Detection> detect(const cv::Mat& grey) = 0;
 };
 
-/// Least-squares 2x3 affine taking `from` onto `to` (at least 3 points, not collinear);
-/// false when the system is singular.
-bool fitAffine(const std::vector<cv::Point2d>& from, const std::vector<cv::Point2d>& to, cv::Matx23d& out);
-
 /// The prototype scaled so that its longer side is `longer` px, with a `border` of black
 /// around it; `to_original` maps the scaled image's pixels back to the original's.
 cv::Mat normalisedPrototype(const cv::Mat& mask, int longer, int border, cv::Matx23d& to_original);

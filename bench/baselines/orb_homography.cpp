@@ -6,6 +6,8 @@
 #include <opencv2/flann.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "amcr/affine.h"
+
 namespace amcr_bench
 {
 OrbHomography::OrbHomography(const std::vector<PrototypeImage>& prototypes, const OrbConfig& config)
@@ -81,7 +83,7 @@ std::vector<Detection> OrbHomography::detect(const cv::Mat& grey)
     std::vector<cv::Point2f> mapped;
     cv::perspectiveTransform(corners, mapped, h);
     const std::vector<cv::Point2d> a(corners.begin(), corners.end()), b(mapped.begin(), mapped.end());
-    if (!fitAffine(a, b, d.prototype_to_image))
+    if (!amcr::fitAffine(a, b, d.prototype_to_image))
       continue;
     d.label = models_[i].label;
     d.score = static_cast<double>(d.correspondences.size());

@@ -2,6 +2,8 @@
 // the unique affine map taking triangle (a, b, c) onto (a', b', c').
 #pragma once
 
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 namespace amcr
@@ -44,4 +46,8 @@ inline Affine identityAffine() { return Affine(1, 0, 0, 0, 1, 0); }
 
 /// Largest and smallest singular value of the linear part.
 void affineScales(const Affine& a, double& smallest, double& largest);
+
+/// Least-squares affine taking `from` onto `to` (the same number of points,
+/// at least 3); false when the points do not fix an affine (collinear).
+bool fitAffine(const std::vector<cv::Point2d>& from, const std::vector<cv::Point2d>& to, Affine& out);
 }  // namespace amcr

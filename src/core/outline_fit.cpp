@@ -146,27 +146,6 @@ int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint
   }
   return rising >= falling ? 1 : -1;
 }
-
-/// Least-squares affine from table points to image points.
-bool fitAffine(const std::vector<cv::Point2d>& from, const std::vector<cv::Point2d>& to, Affine& out)
-{
-  if (from.size() < 3)
-    return false;
-  cv::Matx33d ata = cv::Matx33d::zeros();
-  cv::Vec3d atx(0, 0, 0), aty(0, 0, 0);
-  for (std::size_t i = 0; i < from.size(); ++i)
-  {
-    const cv::Vec3d r(from[i].x, from[i].y, 1.0);
-    ata += r * r.t();
-    atx += r * to[i].x;
-    aty += r * to[i].y;
-  }
-  cv::Vec3d px, py;
-  if (!cv::solve(ata, atx, px, cv::DECOMP_CHOLESKY) || !cv::solve(ata, aty, py, cv::DECOMP_CHOLESKY))
-    return false;
-  out = Affine(px[0], px[1], px[2], py[0], py[1], py[2]);
-  return std::isfinite(px[0] + px[1] + px[2] + py[0] + py[1] + py[2]);
-}
 }  // namespace
 
 Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
