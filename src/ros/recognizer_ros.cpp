@@ -59,6 +59,10 @@ void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers
   // dynamic_reconfigure starts from the parameters loaded above (~config included), not from the .cfg defaults.
   reconfigure_server_ =
       std::make_unique<dynamic_reconfigure::Server<amcr::AMCRConfig>>(reconfigure_mutex_, private_nh_);
+  // The .cfg's bounds are open (the Server would clamp to them); clients are shown the core's ranges.
+  const ConfigBounds bounds = reconfigureBounds();
+  reconfigure_server_->setConfigMin(bounds.min);
+  reconfigure_server_->setConfigMax(bounds.max);
   reconfigure_server_->updateConfig(toConfig(params()));
   reconfigure_server_->setCallback(
       [this](amcr::AMCRConfig& config, std::uint32_t level) { reconfigure(config, level); });
@@ -156,36 +160,54 @@ amcr::LoadPrototypes::Response RecognizerRos::loadPrototypes(const std::string& 
 std::string RecognizerRos::reconfigure(amcr::AMCRConfig& config, std::uint32_t level)
 {
   std::lock_guard<std::mutex> lock(mutex_);
+  std::string error;
   try
   {
-    amcr::Params changed = fromConfig(config, params_);
-    changed.validate();
-    const std::string what = describeChanges(params_, changed);
-    if (what.empty())
-      return "";  // the initial call, or nothing new
-    std::shared_ptr<const amcr::PrototypeMemory> memory = memory_;
-    if (memory && ((level & kReconfigureTables) || tablesDiffer(changed, params_)))
-      memory = std::make_shared<amcr::PrototypeMemory>(amcr::PrototypeMemory::loadDirectory(
-          memory_directory_, changed, [](const std::string& w) { ROS_WARN("prototypes: %s", w.c_str()); }));
-    const bool tables_rebuilt = memory != memory_;
-    std::unique_ptr<amcr::Recognizer> rebuilt;
-    if (memory)
-      rebuilt = std::make_unique<amcr::Recognizer>(changed, memory);
-    // Nothing failed: swap everything at once.
-    params_ = changed;
-    memory_ = memory;
-    restart(std::move(rebuilt));  // null only while no memory is loaded: then there is no filter either
-    ROS_INFO("reconfigured (%s): %s", what.c_str(),
-             !memory_ ? "no prototypes loaded yet"
-                      : tables_rebuilt ? "prototype tables and filter rebuilt" : "filter rebuilt");
-    return "";
+    applyConfigLocked(config, level);
   }
   catch (const std::exception& e)
   {
-    ROS_ERROR("reconfiguration refused, the previous parameters stay: %s", e.what());
-    config = toConfig(params_);  // what is in use is what the client sees
-    return e.what();
+    error = e.what();
+    ROS_ERROR("reconfiguration refused, the previous parameters stay: %s", error.c_str());
   }
+  catch (...)
+  {
+    error = "unknown error";
+    ROS_ERROR("reconfiguration refused, the previous parameters stay: unknown error");
+  }
+  try
+  {
+    config = toConfig(params_);  // what is in effect is what the server keeps and the clients see
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR("cannot show the parameters in effect: %s", e.what());
+  }
+  return error;
+}
+
+void RecognizerRos::applyConfigLocked(const amcr::AMCRConfig& config, std::uint32_t level)
+{
+  amcr::Params changed = fromConfig(config, params_);  // refuses a value out of range, naming it
+  changed.validate();
+  const std::string what = describeChanges(params_, changed);
+  if (what.empty())
+    return;  // the initial call, or nothing new
+  std::shared_ptr<const amcr::PrototypeMemory> memory = memory_;
+  if (memory && ((level & kReconfigureTables) || tablesDiffer(changed, params_)))
+    memory = std::make_shared<amcr::PrototypeMemory>(amcr::PrototypeMemory::loadDirectory(
+        memory_directory_, changed, [](const std::string& w) { ROS_WARN("prototypes: %s", w.c_str()); }));
+  const bool tables_rebuilt = memory != memory_;
+  std::unique_ptr<amcr::Recognizer> rebuilt;
+  if (memory)
+    rebuilt = std::make_unique<amcr::Recognizer>(changed, memory);  // refuses priors naming no prototype
+  // Nothing failed: swap everything at once.
+  params_ = changed;
+  memory_ = memory;
+  restart(std::move(rebuilt));  // null only while no memory is loaded: then there is no filter either
+  ROS_INFO("reconfigured (%s): %s", what.c_str(),
+           !memory_ ? "no prototypes loaded yet"
+                    : tables_rebuilt ? "prototype tables and filter rebuilt" : "filter rebuilt");
 }
 
 amcr::Params RecognizerRos::params() const

@@ -67,8 +67,9 @@ public:
   /// and says why. Publishes the label table on success.
   amcr::LoadPrototypes::Response loadPrototypes(const std::string& directory);
   /// dynamic_reconfigure: rebuilds the filter (and the tables when `level` or the parameters ask for it)
-  /// with `config`. Returns the error, empty on success; on an error `config` becomes the configuration
-  /// in use and nothing changes.
+  /// with `config`. Returns the error (naming the parameter, its value and range), empty on success; on
+  /// an error nothing changes. Either way `config` becomes the configuration in effect, so that the
+  /// server never shows a value that is not (and a refused value cannot spoil the next change).
   std::string reconfigure(amcr::AMCRConfig& config, std::uint32_t level);
 
   /// An image that failed after process() returned (publishing): logged and counted as skipped.
@@ -85,6 +86,8 @@ private:
   /// place of the current one, or the current one is reset; the input's time and the statistics'
   /// frame sequence start again.
   void restart(std::unique_ptr<amcr::Recognizer> replacement = nullptr);
+  /// reconfigure() under the lock: throws when `config` is refused, before anything changes.
+  void applyConfigLocked(const amcr::AMCRConfig& config, std::uint32_t level);
   /// Loads a memory and swaps it in (lock held). Returns the error text, empty on success.
   std::string loadLocked(const std::string& directory);
   /// Resets when time goes backwards in the input; notes a change of image size (lock held).

@@ -1,6 +1,10 @@
 #include "reconfigure.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <memory>
+#include <sstream>
 
 #include "amcr/errors.h"
 
@@ -34,6 +38,36 @@ std::string textParameter(const amcr::Params& params, const std::string& name)
   if (name == "prototype_priors")
     return amcr::formatPriors(params.prototype_priors);
   throw amcr::ParameterError("cfg/AMCR.cfg has the string parameter '" + name + "', which amcr::Params does not know");
+}
+
+/// The core's range of `name`.
+const amcr::ParameterInfo* coreInfo(const std::string& name)
+{
+  for (const amcr::ParameterInfo& info : amcr::parameterTable())
+    if (info.name == name)
+      return &info;
+  return nullptr;
+}
+
+int clampToInt(double value)
+{
+  return static_cast<int>(std::clamp(value, static_cast<double>(std::numeric_limits<int>::min()),
+                                     static_cast<double>(std::numeric_limits<int>::max())));
+}
+
+/// A value for a log line: an int_t or bool_t of the .cfg as an integer ("60", not "60.000000").
+std::string formatValue(const std::string& name, double value)
+{
+  std::ostringstream out;
+  for (const auto& d : configFields())
+    if (d->name == name && d->type != "double")
+    {
+      out << std::llround(value);
+      return out.str();
+    }
+  out.precision(10);
+  out << value;
+  return out.str();
 }
 }  // namespace
 
@@ -70,6 +104,33 @@ amcr::Params fromConfig(const amcr::AMCRConfig& config, amcr::Params params)
   return params;
 }
 
+ConfigBounds reconfigureBounds()
+{
+  ConfigBounds bounds{amcr::AMCRConfig::__getDefault__(), amcr::AMCRConfig::__getDefault__()};
+  for (const auto& d : configFields())
+  {
+    const amcr::ParameterInfo* info = coreInfo(d->name);
+    if (!info)
+      continue;  // a string, or a name test_reconfigure_table.cpp reports
+    if (const auto* f = asField<int>(d))
+    {
+      bounds.min.*(f->field) = clampToInt(std::ceil(info->min));
+      bounds.max.*(f->field) = clampToInt(std::floor(info->max));
+    }
+    else if (const auto* f = asField<double>(d))
+    {
+      bounds.min.*(f->field) = info->min;
+      bounds.max.*(f->field) = info->max;
+    }
+    else if (const auto* f = asField<bool>(d))
+    {
+      bounds.min.*(f->field) = false;
+      bounds.max.*(f->field) = true;
+    }
+  }
+  return bounds;
+}
+
 bool tablesDiffer(const amcr::Params& a, const amcr::Params& b)
 {
   return a.prototype_size != b.prototype_size || a.edge_threshold != b.edge_threshold ||
@@ -79,16 +140,19 @@ bool tablesDiffer(const amcr::Params& a, const amcr::Params& b)
 std::string describeChanges(const amcr::Params& before, const amcr::Params& after)
 {
   std::string out;
+  const auto note = [&out](const std::string& change) { out += (out.empty() ? "" : ", ") + change; };
   for (const amcr::ParameterInfo& info : amcr::parameterTable())
   {
     const double was = amcr::getParameter(before, info.name), is = amcr::getParameter(after, info.name);
     if (was != is)
-      out += (out.empty() ? "" : ", ") + info.name + " " + std::to_string(was) + " -> " + std::to_string(is);
+      note(info.name + " " + formatValue(info.name, was) + " -> " + formatValue(info.name, is));
   }
   if (after.likelihood_form != before.likelihood_form)
-    out += (out.empty() ? "" : ", ") + std::string("likelihood_form ") + amcr::toString(after.likelihood_form);
+    note("likelihood_form " + amcr::toString(after.likelihood_form));
   if (after.deviation_space != before.deviation_space)
-    out += (out.empty() ? "" : ", ") + std::string("deviation_space ") + amcr::toString(after.deviation_space);
+    note("deviation_space " + amcr::toString(after.deviation_space));
+  if (after.prototype_priors != before.prototype_priors)
+    note("prototype_priors '" + amcr::formatPriors(after.prototype_priors) + "'");
   return out;
 }
 }  // namespace amcr_ros

@@ -3,6 +3,11 @@
 // descriptions of cfg/AMCR.cfg and read or write each one through amcr's
 // getParameter/setParameter by its name. test/ros/test_reconfigure_table.cpp
 // names every parameter that the .cfg lacks or the core does not know.
+//
+// Ranges: the .cfg's generated bounds are open, because dynamic_reconfigure's
+// Server clamps to them before any callback sees a value (-5 V-particles would
+// become 1). fromConfig() refuses a value out of the core's range instead, and
+// reconfigureBounds() gives the core's ranges for the published descriptions.
 #pragma once
 
 #include <string>
@@ -21,10 +26,19 @@ amcr::AMCRConfig toConfig(const amcr::Params& params);
 /// also for a parameter of the .cfg that amcr::Params does not know.
 amcr::Params fromConfig(const amcr::AMCRConfig& config, amcr::Params base);
 
+/// The smallest and largest value of every numeric parameter: amcr::parameterTable()'s range, within int
+/// for an int_t of the .cfg; strings keep the defaults. For Server::setConfigMin/setConfigMax (what
+/// clients show; the Server's clamp uses the .cfg's open bounds).
+struct ConfigBounds
+{
+  amcr::AMCRConfig min, max;
+};
+ConfigBounds reconfigureBounds();
+
 /// True when a memory built with `a` differs from one built with `b`.
 bool tablesDiffer(const amcr::Params& a, const amcr::Params& b);
 
-/// The numeric parameters and forms that differ, readable ("sigma_w 5.000000 -> 7.000000, ...");
-/// empty when none.
+/// The parameters that differ, readable ("num_v_particles 60 -> 40, sigma_w 5 -> 7.5,
+/// prototype_priors 'bat: 2'"; whole numbers as integers); empty when none.
 std::string describeChanges(const amcr::Params& before, const amcr::Params& after);
 }  // namespace amcr_ros

@@ -1,10 +1,12 @@
 // amcr_ros::RecognizerRos on its own (no nodelet, no topics in between): built
 // from plain node handles against the rostest master, fed drawn images through
 // process(), and reset, reloaded and reconfigured through its methods.
+#include <map>
 #include <memory>
 #include <string>
 
 #include <cv_bridge/cv_bridge.h>
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <ros/ros.h>
@@ -37,6 +39,7 @@ protected:
   {
     const std::string name = "~recognizer_" + std::to_string(instances_++);
     ros::NodeHandle private_nh(name);
+    namespace_ = private_nh.getNamespace();
     private_nh.setParam("config", std::string(AMCR_SOURCE_DIR) + "/config/amcr.yaml");
     private_nh.setParam("seed", 1);
     private_nh.setParam("prototypes", prototypes);
@@ -61,6 +64,20 @@ protected:
     return out.message.iteration;
   }
 
+  /// Sets one int through the dynamic_reconfigure service of the last RecognizerRos made, as
+  /// `dynparam set` does; the configuration the server answers with.
+  dynamic_reconfigure::Config setThroughServer(const std::string& name, int value)
+  {
+    dynamic_reconfigure::Reconfigure call;
+    dynamic_reconfigure::IntParameter parameter;
+    parameter.name = name;
+    parameter.value = value;
+    call.request.config.ints.push_back(parameter);
+    EXPECT_TRUE(ros::service::call(namespace_ + "/set_parameters", call)) << namespace_ << "/set_parameters";
+    return call.response.config;
+  }
+
+  std::string namespace_;
   amcr_test::TempDir dir_;
   amcr_test::Scene scene_;
   cv::Mat clean_;
@@ -161,6 +178,62 @@ TEST_F(RecognizerRosTest, ReconfigureRefusesAnInvalidValueNamingIt)
   EXPECT_EQ(recognizer->params().num_v_particles, 60);
   EXPECT_EQ(step(*recognizer, 0.1), 2) << "a refused reconfiguration restarted the filter";
 }
+
+int intValue(const dynamic_reconfigure::Config& config, const std::string& name)
+{
+  for (const auto& p : config.ints)
+    if (p.name == name)
+      return p.value;
+  ADD_FAILURE() << name << " is not in the configuration";
+  return 0;
+}
+
+// The server used to clamp -5 V-particles to 1 before the callback saw it, and apply it; now the value
+// reaches RecognizerRos, which refuses it and keeps what is in effect, in the server too.
+TEST_F(RecognizerRosTest, ReconfigureServiceRefusesAnOutOfRangeValueInsteadOfClampingIt)
+{
+  auto recognizer = make(dir_.path());
+  EXPECT_EQ(step(*recognizer, 0.0), 1);
+  const dynamic_reconfigure::Config shown = setThroughServer("num_v_particles", -5);
+  EXPECT_EQ(intValue(shown, "num_v_particles"), 60) << "the server shows a value not in effect";
+  EXPECT_EQ(recognizer->params().num_v_particles, 60) << "-5 was clamped and applied";
+  EXPECT_EQ(step(*recognizer, 0.1), 2) << "a refused reconfiguration restarted the filter";
+
+  amcr::AMCRConfig config = amcr_ros::toConfig(recognizer->params());
+  config.num_v_particles = -5;
+  const std::string error = recognizer->reconfigure(config, 0);
+  for (const char* part : {"num_v_particles", "-5", "[1, 5000]"})
+    EXPECT_NE(error.find(part), std::string::npos) << part << " not in: " << error;
+  EXPECT_EQ(config.num_v_particles, 60);
+
+  EXPECT_EQ(intValue(setThroughServer("num_v_particles", 40), "num_v_particles"), 40);
+  EXPECT_EQ(recognizer->params().num_v_particles, 40) << "a valid value after a refused one";
+}
+
+// A change of prototype_priors alone is applied; refused priors leave the configuration in effect (in
+// `config`, which the server keeps) and do not spoil the next, unrelated change.
+TEST_F(RecognizerRosTest, ReconfigureAppliesAndRefusesPriorsAlone)
+{
+  auto recognizer = make(dir_.path());
+  EXPECT_EQ(step(*recognizer, 0.0), 1);
+  amcr::AMCRConfig config = amcr_ros::toConfig(recognizer->params());
+  config.prototype_priors = "arrow: 2";
+  EXPECT_EQ(recognizer->reconfigure(config, 0), "");
+  const std::map<std::string, double> arrow_twice = {{"arrow", 2.0}};
+  EXPECT_EQ(recognizer->params().prototype_priors, arrow_twice) << "a change of the priors alone was dropped";
+  EXPECT_EQ(step(*recognizer, 0.1), 1) << "new priors did not restart the filter";
+
+  config.prototype_priors = "no_such_label: 1";
+  const std::string error = recognizer->reconfigure(config, 0);
+  EXPECT_NE(error.find("no_such_label"), std::string::npos) << error;
+  EXPECT_EQ(config.prototype_priors, amcr::formatPriors(arrow_twice)) << "the refused priors are still shown";
+  EXPECT_EQ(recognizer->params().prototype_priors, arrow_twice);
+
+  config.num_v_particles = 40;
+  EXPECT_EQ(recognizer->reconfigure(config, 0), "") << "the next change is refused";
+  EXPECT_EQ(recognizer->params().num_v_particles, 40);
+  EXPECT_EQ(recognizer->params().prototype_priors, arrow_twice);
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -168,5 +241,7 @@ int main(int argc, char** argv)
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "test_recognizer_ros");
   ros::NodeHandle nh;  // keeps the node up between the tests
+  ros::AsyncSpinner spinner(1);  // the dynamic_reconfigure service the tests call
+  spinner.start();
   return RUN_ALL_TESTS();
 }

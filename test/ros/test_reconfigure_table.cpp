@@ -1,10 +1,16 @@
 // cfg/AMCR.cfg against amcr::parameterTable(): the same names (a missing or
-// extra one is named), ranges and defaults, and Params survive the round trip
-// through the generated config (src/ros/reconfigure.cpp walks the .cfg's own
+// extra one is named), ranges (in the descriptions and the published bounds;
+// the generated bounds are open so that nothing is clamped) and defaults, and
+// Params survive the round trip through the generated config (src/ros/reconfigure.cpp walks the .cfg's own
 // descriptions: it holds no list of names).
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
+#include <regex>
 #include <set>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -18,15 +24,6 @@ TEST(ReconfigureTable, SameParametersRangesAndDefaultsAsTheCore)
 {
   const auto& descriptions = amcr::AMCRConfig::__getParamDescriptions__();
   const amcr::AMCRConfig defaults = amcr::AMCRConfig::__getDefault__();
-  // Strings have no range: the bounds keep the defaults' strings.
-  amcr::AMCRConfig min = amcr::AMCRConfig::__getMin__();
-  amcr::AMCRConfig max = amcr::AMCRConfig::__getMax__();
-  for (amcr::AMCRConfig* c : {&min, &max})
-  {
-    c->likelihood_form = defaults.likelihood_form;
-    c->deviation_space = defaults.deviation_space;
-    c->prototype_priors = defaults.prototype_priors;
-  }
   std::set<std::string> cfg_names;
   for (const auto& d : descriptions)
     cfg_names.insert(d->name);
@@ -42,18 +39,101 @@ TEST(ReconfigureTable, SameParametersRangesAndDefaultsAsTheCore)
 
   const amcr::Params core_defaults;
   const amcr::Params cfg_defaults = amcr_ros::fromConfig(defaults, amcr::Params());
-  const amcr::Params cfg_min = amcr_ros::fromConfig(min, amcr::Params());
-  const amcr::Params cfg_max = amcr_ros::fromConfig(max, amcr::Params());
   for (const amcr::ParameterInfo& info : amcr::parameterTable())
-  {
     EXPECT_DOUBLE_EQ(amcr::getParameter(cfg_defaults, info.name), amcr::getParameter(core_defaults, info.name))
         << info.name;
-    // Ranges: the cfg may be narrower where the core's bound is open or beyond int.
-    EXPECT_GE(amcr::getParameter(cfg_min, info.name), info.min) << info.name;
-    EXPECT_LE(amcr::getParameter(cfg_max, info.name), info.max) << info.name;
-    EXPECT_NO_THROW(cfg_min.validate()) << info.name;
+}
+
+/// The core's range of a parameter as an int_t of the .cfg can hold it.
+std::pair<double, double> expectedRange(const amcr::ParameterInfo& info, const std::string& cfg_type)
+{
+  if (cfg_type != "int")
+    return {info.min, info.max};
+  return {std::max(std::ceil(info.min), double(std::numeric_limits<int>::min())),
+          std::min(std::floor(info.max), double(std::numeric_limits<int>::max()))};
+}
+
+// The range in each description of the .cfg (what `dynparam` and the .cfg's reader see) and the bounds the
+// nodelet publishes are the core's.
+TEST(ReconfigureTable, DescriptionsAndPublishedBoundsGiveTheCoreRanges)
+{
+  const amcr_ros::ConfigBounds bounds = amcr_ros::reconfigureBounds();
+  const amcr::Params low = amcr_ros::fromConfig(bounds.min, amcr::Params());
+  const amcr::Params high = amcr_ros::fromConfig(bounds.max, amcr::Params());
+  const std::regex range(R"(range \[([-+0-9.e]+), ([-+0-9.e]+)\]$)");
+  for (const auto& d : amcr::AMCRConfig::__getParamDescriptions__())
+  {
+    const amcr::ParameterInfo* info = nullptr;
+    for (const amcr::ParameterInfo& i : amcr::parameterTable())
+      if (i.name == d->name)
+        info = &i;
+    if (!info || d->type == "bool")
+      continue;  // a string, a flag, or a name the test above reports
+    const auto expected = expectedRange(*info, d->type);
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(d->description, m, range))
+        << d->name << ": no 'range [min, max]' at the end of its description in cfg/AMCR.cfg: " << d->description;
+    EXPECT_DOUBLE_EQ(std::stod(m[1]), expected.first) << d->name << " (description in cfg/AMCR.cfg)";
+    EXPECT_DOUBLE_EQ(std::stod(m[2]), expected.second) << d->name << " (description in cfg/AMCR.cfg)";
+    EXPECT_DOUBLE_EQ(amcr::getParameter(low, d->name), expected.first) << d->name << " (published minimum)";
+    EXPECT_DOUBLE_EQ(amcr::getParameter(high, d->name), expected.second) << d->name << " (published maximum)";
   }
-  EXPECT_NO_THROW(cfg_max.validate());
+}
+
+using Description = amcr::AMCRConfig::AbstractParamDescriptionConstPtr;
+
+void setNumber(amcr::AMCRConfig& config, const Description& d, double value)
+{
+  if (const auto* f = dynamic_cast<const amcr::AMCRConfig::ParamDescription<int>*>(d.get()))
+    config.*(f->field) = static_cast<int>(value);
+  else if (const auto* f = dynamic_cast<const amcr::AMCRConfig::ParamDescription<double>*>(d.get()))
+    config.*(f->field) = value;
+}
+
+double number(const amcr::AMCRConfig& config, const Description& d)
+{
+  if (const auto* f = dynamic_cast<const amcr::AMCRConfig::ParamDescription<int>*>(d.get()))
+    return config.*(f->field);
+  if (const auto* f = dynamic_cast<const amcr::AMCRConfig::ParamDescription<double>*>(d.get()))
+    return config.*(f->field);
+  return 0.0;
+}
+
+// dynamic_reconfigure's Server clamps to the .cfg's generated bounds before the nodelet sees a value: they
+// must be open, so that a value out of the core's range reaches fromConfig(), which refuses it naming it.
+TEST(ReconfigureTable, TheServerNeverClampsAndOutOfRangeValuesAreRefused)
+{
+  for (const auto& d : amcr::AMCRConfig::__getParamDescriptions__())
+  {
+    const amcr::ParameterInfo* info = nullptr;
+    for (const amcr::ParameterInfo& i : amcr::parameterTable())
+      if (i.name == d->name)
+        info = &i;
+    if (!info || (d->type != "int" && d->type != "double"))
+      continue;
+    const auto expected = expectedRange(*info, d->type);
+    for (const double outside : {expected.first - 1.0, expected.second + 1.0})
+    {
+      if (d->type == "int" && (outside < std::numeric_limits<int>::min() || outside > std::numeric_limits<int>::max()))
+        continue;
+      amcr::AMCRConfig config = amcr::AMCRConfig::__getDefault__();
+      setNumber(config, d, outside);
+      amcr::AMCRConfig clamped = config;
+      clamped.__clamp__();
+      EXPECT_EQ(number(clamped, d), outside) << d->name << " = " << outside << " is clamped by the Server";
+      try
+      {
+        amcr_ros::fromConfig(clamped, amcr::Params());
+        ADD_FAILURE() << d->name << " = " << outside << " accepted";
+      }
+      catch (const amcr::ParameterError& e)
+      {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(d->name), std::string::npos) << what;
+        EXPECT_NE(what.find("range"), std::string::npos) << what;
+      }
+    }
+  }
 }
 
 // A whole-number parameter of the core is an int_t (or bool_t) in the .cfg, any other a double_t.
@@ -104,5 +184,32 @@ TEST(ReconfigureTable, RoundTrip)
     q.prototype_size = 64;
     return q;
   }()));
+}
+}  // namespace
+
+namespace
+{
+// The log line of a reconfiguration: whole numbers as integers, and a change of prototype_priors alone is a
+// change (it was not compared, so dynamic_reconfigure showed priors that were not in effect).
+TEST(ReconfigureTable, ChangesNameIntegersAsIntegersAndThePriors)
+{
+  const amcr::Params before;
+  amcr::Params after;
+  after.num_v_particles = 40;
+  after.sigma_w = 7.5;
+  after.seed = 12;
+  after.prototype_priors = {{"bat", 2.0}};
+  const std::string what = amcr_ros::describeChanges(before, after);
+  EXPECT_NE(what.find("num_v_particles 60 -> 40"), std::string::npos) << what;
+  EXPECT_NE(what.find("seed 0 -> 12"), std::string::npos) << what;
+  EXPECT_NE(what.find("sigma_w 5 -> 7.5"), std::string::npos) << what;
+  EXPECT_NE(what.find("prototype_priors '" + amcr::formatPriors(after.prototype_priors) + "'"), std::string::npos)
+      << what;
+  EXPECT_EQ(what.find(".000000"), std::string::npos) << what;
+
+  amcr::Params priors_only;
+  priors_only.prototype_priors = {{"bat", 0.0}};
+  EXPECT_FALSE(amcr_ros::describeChanges(before, priors_only).empty()) << "a change of prototype_priors alone";
+  EXPECT_TRUE(amcr_ros::describeChanges(before, amcr::Params()).empty());
 }
 }  // namespace
