@@ -238,9 +238,9 @@ protected:
   }
 
   /// Runs amcr_offline with `args`; its standard output and error are captured.
-  static RunResult run(const std::vector<std::string>& args)
+  static RunResult run(const std::vector<std::string>& args, const std::string& prefix = "")
   {
-    std::string command = quote(AMCR_OFFLINE_BINARY);
+    std::string command = prefix + quote(AMCR_OFFLINE_BINARY);
     for (const std::string& a : args)
       command += " " + quote(a);
     const fs::path out = root_ / "stdout.txt";
@@ -261,6 +261,29 @@ protected:
                                      (root_ / "fast.yaml").string(), "--input", input.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
+  }
+
+  /// A prefix for run() under which file permissions apply: root (as in a container) reads every file
+  /// unless it drops CAP_DAC_OVERRIDE. Empty when not root; null when root cannot drop it.
+  static const char* withFilePermissions()
+  {
+    if (geteuid() != 0)
+      return "";
+    if (std::system("setpriv --bounding-set -dac_override,-dac_read_search -- true >/dev/null 2>&1") == 0)
+      return "setpriv --bounding-set -dac_override,-dac_read_search -- ";
+    return nullptr;
+  }
+
+  /// An MJPG .avi of `frames` frames of the scene, written by cv::VideoWriter; its bytes.
+  static std::string writeVideo(const fs::path& path, int frames)
+  {
+    {
+      cv::VideoWriter writer(path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 15.0, kFrameSize, true);
+      EXPECT_TRUE(writer.isOpened());
+      for (int k = 0; k < frames; ++k)
+        writer.write(drawScene(k % kSceneFrames));
+    }
+    return readFile(path);
   }
 
   static fs::path root_;
@@ -389,6 +412,7 @@ TEST_F(OfflineRunner, HelpExitsZero)
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.out.find("--prototypes DIR"), std::string::npos);
   EXPECT_NE(r.out.find("skipped"), std::string::npos);
+  EXPECT_NE(r.out.find("3  the input ended early"), std::string::npos) << "the exit codes are not documented";
   EXPECT_TRUE(r.err.empty());
 }
 
@@ -450,4 +474,92 @@ TEST_F(OfflineRunner, UnwritableOutputIsOneErrorLine)
 {
   const fs::path output = root_ / "no_such_dir" / "out.jsonl";
   expectOneErrorLine(run(fastArgs(root_ / "frames", {"--output", output.string()})), 1, "out.jsonl");
+}
+
+// A video cut short or damaged used to end early with exit 0 and no word (6 of 10 frames): the frames read
+// are kept, one line says how many of how many, and the exit code is 3.
+TEST_F(OfflineRunner, ATruncatedOrCorruptVideoKeepsItsFramesAndSaysHowFarItWasRead)
+{
+  const std::string whole = writeVideo(root_ / "ten.avi", 10);
+  ASSERT_GT(whole.size(), 1000u);
+  std::string corrupt = whole;
+  for (std::size_t i = whole.size() / 2; i < whole.size() * 55 / 100; ++i)
+    corrupt[i] = '\0';
+  const std::vector<std::pair<std::string, std::string>> videos = {
+      {"truncated.avi", whole.substr(0, whole.size() * 6 / 10)}, {"corrupt.avi", corrupt}};
+  for (const auto& video : videos)
+  {
+    writeFile(root_ / video.first, video.second);
+    const RunResult r = run(fastArgs(root_ / video.first));
+    EXPECT_EQ(r.exit_code, 3) << video.first << ": " << r.err;
+    const std::vector<Json> frames = parseFrames(r.out);
+    EXPECT_GE(frames.size(), 1u) << video.first;
+    EXPECT_LT(frames.size(), 10u) << video.first;
+    const std::vector<std::string> lines = splitLines(r.err);
+    ASSERT_EQ(lines.size(), 1u) << r.err;
+    EXPECT_EQ(lines[0].rfind("amcr_offline: error: ", 0), 0u) << lines[0];
+    const std::string figures = "ended after " + std::to_string(frames.size()) + " frames of the 10";
+    for (const std::string& part : {video.first, figures})
+      EXPECT_NE(lines[0].find(part), std::string::npos) << "'" << part << "' not in: " << lines[0];
+  }
+  // Read whole, or capped by --frames: no complaint.
+  const RunResult whole_run = run(fastArgs(root_ / "ten.avi"));
+  EXPECT_EQ(whole_run.exit_code, 0) << whole_run.err;
+  EXPECT_EQ(parseFrames(whole_run.out).size(), 10u);
+  const RunResult capped = run(fastArgs(root_ / "truncated.avi", {"--frames", "2"}));
+  EXPECT_EQ(capped.exit_code, 0) << capped.err;
+  EXPECT_TRUE(capped.err.empty()) << capped.err;
+}
+
+// cv::CAP_ANY offered a garbage file to the camera backends too (gphoto2 leaked, V4L2 opened it): only the
+// file backends see it now. OpenCV says which backends it tries when OPENCV_VIDEOIO_DEBUG is set.
+TEST_F(OfflineRunner, AGarbageFileIsOfferedToFileBackendsOnly)
+{
+  writeFile(root_ / "garbage.bin", "neither an image nor a video");
+  expectOneErrorLine(run(fastArgs(root_ / "garbage.bin")), 1, "as an image or a video");
+  const RunResult r =
+      run(fastArgs(root_ / "garbage.bin"), "env OPENCV_VIDEOIO_DEBUG=1 OPENCV_LOG_LEVEL=WARNING ");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const std::regex tried(R"(VIDEOIO\(([A-Z0-9_]+)\): trying capture)");
+  int backends = 0;
+  for (const std::string& line : splitLines(r.err))
+  {
+    std::smatch m;
+    if (!std::regex_search(line, m, tried))
+      continue;
+    ++backends;
+    EXPECT_TRUE(m[1] == "FFMPEG" || m[1] == "CV_MJPEG") << m[1] << " was offered a file: " << line;
+  }
+  EXPECT_GE(backends, 1) << "OpenCV did not say which backends it tried:\n" << r.err;
+}
+
+// A symbolic link loop said "does not exist"; an unreadable file said nothing about permissions.
+TEST_F(OfflineRunner, ASymlinkLoopAndAnUnreadableFileSayWhatIsWrong)
+{
+  const fs::path loop_a = root_ / "loop_a.avi", loop_b = root_ / "loop_b.avi";
+  std::error_code ignored;
+  fs::remove(loop_a, ignored);
+  fs::remove(loop_b, ignored);
+  fs::create_symlink(loop_b, loop_a);
+  fs::create_symlink(loop_a, loop_b);
+  expectOneErrorLine(run(fastArgs(loop_a)), 1, "loop_a.avi' is a symbolic link loop");
+
+  const char* prefix = withFilePermissions();
+  if (!prefix)
+    GTEST_SKIP() << "running as root without setpriv: every file is readable, permissions cannot be tested";
+  writeVideo(root_ / "locked.avi", 2);
+  fs::permissions(root_ / "locked.avi", fs::perms::none);
+  expectOneErrorLine(run(fastArgs(root_ / "locked.avi"), prefix), 1, "locked.avi': Permission denied");
+
+  const fs::path dir = root_ / "frames_with_locked_one";
+  fs::create_directories(dir);
+  fs::copy_file(root_ / "frames" / "frame_000.png", dir / "a.png", fs::copy_options::overwrite_existing);
+  fs::copy_file(root_ / "frames" / "frame_001.png", dir / "b.png", fs::copy_options::overwrite_existing);
+  fs::permissions(dir / "b.png", fs::perms::none);
+  const RunResult r = run(fastArgs(dir), prefix);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(parseFrames(r.out).size(), 2u);
+  const std::vector<std::string> warnings = splitLines(r.err);
+  ASSERT_EQ(warnings.size(), 1u) << r.err;
+  EXPECT_NE(warnings[0].find("b.png': Permission denied"), std::string::npos) << warnings[0];
 }

@@ -33,6 +33,7 @@ using namespace amcr::offline;
 constexpr const char* kProgram = "amcr_offline";
 constexpr int kExitError = 1;
 constexpr int kExitUsage = 2;
+constexpr int kExitIncomplete = 3;  // the input ended early: what was read is written, the rest is missing
 constexpr double kDefaultOverlayFps = 10.0;
 
 /// One line: newlines and tabs become spaces, runs of spaces collapse.
@@ -183,8 +184,15 @@ int run(const RunnerOptions& options)
   }
   if (overlay)
     overlay->close();
+  const std::string incomplete = source->incomplete();
   if (processed == 0)
-    throw std::runtime_error("no frame of input '" + options.input + "' could be read");
+    throw std::runtime_error(incomplete.empty() ? "no frame of input '" + options.input + "' could be read"
+                                                : incomplete);
+  if (!incomplete.empty())
+  {
+    reportError(incomplete + "; the " + std::to_string(processed) + " frames read are written to " + destination);
+    return kExitIncomplete;
+  }
   return 0;
 }
 }  // namespace
@@ -196,6 +204,11 @@ int main(int argc, char** argv)
   // environment variable OPENCV_LOG_LEVEL still takes precedence.
   if (std::getenv("OPENCV_LOG_LEVEL") == nullptr)
     cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  // The same for FFmpeg's own lines on a damaged video ("[mjpeg @ 0x...] error count: 64"): the runner
+  // says in one line how far the video could be read (OpenCV >= 4.5 reads OPENCV_FFMPEG_LOGLEVEL; -8 is
+  // FFmpeg's AV_LOG_QUIET).
+  if (std::getenv("OPENCV_FFMPEG_LOGLEVEL") == nullptr && std::getenv("OPENCV_FFMPEG_DEBUG") == nullptr)
+    setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
   try
   {
     const RunnerOptions options = parseRunnerOptions(std::vector<std::string>(argv + 1, argv + argc));

@@ -12,7 +12,8 @@ namespace amcr
 {
 namespace offline
 {
-/// The input cannot be opened at all (missing, unreadable, empty directory).
+/// The input cannot be opened at all (missing, a symbolic link loop, not
+/// readable, an empty directory, neither an image nor a video).
 class SourceError : public std::runtime_error
 {
 public:
@@ -35,14 +36,21 @@ public:
   /// Opens `path`: a directory (its image files sorted by name, at most
   /// `max_frames` of them when `cap` is set), a file that reads as an image
   /// (repeated `max_frames` times), or else a video (at most `max_frames`
-  /// frames when `cap` is set). Throws SourceError naming the path when it is
-  /// missing, unreadable, or a directory without image files.
+  /// frames when `cap` is set; opened with OpenCV's file backends only).
+  /// Throws SourceError naming the path and the reason when it is missing, a
+  /// symbolic link loop, unreadable (permission denied, ...), or a directory
+  /// without image files.
   static std::unique_ptr<FrameSource> open(const std::string& path, long max_frames, bool cap);
 
   /// The next frame; false at the end. A directory file that cannot be read
   /// gives a frame with an empty image and `problem` set; a video ends at
-  /// its first unreadable frame.
+  /// its first unreadable frame (see incomplete()).
   virtual bool next(Frame& frame) = 0;
+
+  /// After next() returned false: why the input ended before its end, with
+  /// the figures (a video that gave fewer frames than its container holds,
+  /// or whose read failed); empty when it was read whole.
+  virtual std::string incomplete() const { return ""; }
 
   /// Frames per second of a video, 0 when unknown.
   virtual double fps() const { return 0.0; }

@@ -186,9 +186,19 @@ recognition step, so line N stays the N-th file:
 The overlay video holds only the frames that were processed. It is an error
 when no frame at all could be read.
 
-Exit status: 0 on success; 1 on an error (missing or unreadable input or
-prototypes, a parameter out of range, an unusable image, a write failure);
-2 on a bad command line. Errors are one line on standard error:
+Damaged videos: a video that ends before the frame count of its container
+(truncated or corrupt), or whose read fails, keeps the lines of the frames
+that were read; the runner then says on standard error how many frames of
+how many it read, and exits with 3.
+
+Exit status:
+  0  success: every frame of the input was read
+  1  an error (missing or unreadable input or prototypes, a parameter out of
+     range, an unusable image, a write failure)
+  2  a bad command line
+  3  the input ended early (a truncated or corrupt video): the frames read
+     are written, the rest is missing
+Errors are one line on standard error:
   amcr_offline: error: <what>
 )";
 }
