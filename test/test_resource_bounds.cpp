@@ -99,6 +99,20 @@ TEST(ResourceBounds, InputImageAboveThePixelBoundIsRefused)
   EXPECT_NO_THROW(recognizer.step(cv::Mat(720, 1280, CV_8UC1, cv::Scalar(0))));
 }
 
+TEST(ResourceBounds, TableMemoryAboveTheBoundIsRefusedBeforeBuilding)
+{
+  amcr_test::TempDir dir;
+  amcr::Params params;
+  params.prototype_size = 512;  // up to 29.5 MB of table per prototype
+  const long files = amcr::kMaxTableBytes / amcr::maxTableBytesPerPrototype(512) + 1;
+  for (long i = 0; i < files; ++i)
+    std::ofstream(dir.file("p" + std::to_string(i) + ".png")) << "x";
+  const std::string error =
+      errorOf<amcr::MemoryError>([&] { amcr::PrototypeMemory::loadDirectory(dir.path(), params); });
+  EXPECT_NE(error.find(std::to_string(files) + " x "), std::string::npos) << error;
+  EXPECT_NE(error.find("bound of 4.29 GB"), std::string::npos) << error;
+}
+
 TEST(ParamsConsistency, MinSupportAboveTheVParticlesIsRefusedNamingBoth)
 {
   amcr::Params params;

@@ -11,6 +11,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "amcr/errors.h"
+#include "amcr/image_file.h"
+
 namespace amcr
 {
 namespace offline
@@ -19,16 +22,18 @@ namespace fs = std::filesystem;
 
 namespace
 {
-/// imread that reports failure as an empty image instead of an exception
-/// (some decoders throw on corrupt files).
-cv::Mat readImage(const std::string& path)
+/// amcr::readImageFile that reports failure as an empty image and the reason
+/// in `problem` instead of an exception (a damaged JPEG or PNG is refused).
+cv::Mat readImage(const std::string& path, std::string* problem = nullptr)
 {
   try
   {
-    return cv::imread(path, cv::IMREAD_UNCHANGED);
+    return readImageFile(path, cv::IMREAD_UNCHANGED);
   }
-  catch (const cv::Exception&)
+  catch (const Error& e)
   {
+    if (problem)
+      *problem = e.what();
     return cv::Mat();
   }
 }
@@ -45,8 +50,8 @@ public:
     frame.index = static_cast<long>(position_);
     const std::string& file = files_[position_++];
     frame.name = file;
-    frame.image = readImage(file);
-    frame.problem = frame.image.empty() ? "cannot read image '" + file + "'" : "";
+    frame.problem.clear();
+    frame.image = readImage(file, &frame.problem);
     return true;
   }
 
@@ -176,11 +181,12 @@ std::unique_ptr<FrameSource> FrameSource::open(const std::string& path, long max
   if (!fs::is_regular_file(status))
     throw SourceError("input '" + path + "' is neither a file nor a directory");
 
-  cv::Mat image = readImage(path);
+  std::string problem;
+  cv::Mat image = readImage(path, &problem);
   if (!image.empty())
     return std::make_unique<RepeatedImageSource>(image, max_frames, path);
   if (hasImageExtension(path))
-    throw SourceError("cannot read image '" + path + "'");
+    throw SourceError(problem);
 
   auto capture = std::make_unique<cv::VideoCapture>();
   bool opened = false;
