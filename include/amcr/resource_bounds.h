@@ -45,6 +45,6 @@ void checkParticleBound(std::int64_t v_particles, std::int64_t m_per_v, const st
 /// InputError when width x height exceeds kMaxImagePixels; `what` names the image.
 void checkImageBound(std::int64_t width, std::int64_t height, const std::string& what);
 
-/// A count of bytes for messages: "1.84 GB (1840000000 bytes)".
+/// A count of bytes for messages: "1.84 GB", "29.5 MB".
 std::string formatBytes(std::int64_t bytes);
 }  // namespace amcr

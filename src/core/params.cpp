@@ -126,7 +126,7 @@ void checkConsistency(const Params& p)
                          " and 'm_reseed_fraction' = " + formatNumber(p.m_reseed_fraction) +
                          " add up to 1 or more: no M-particle would be drawn by its likelihood");
   checkParticleBound(p.num_v_particles, p.m_particles_per_prototype,
-                     "per prototype, with at least one prototype");
+                     "m_particles_per_prototype, before the prototypes multiply it");
 }
 }  // namespace
 

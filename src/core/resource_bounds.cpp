@@ -42,6 +42,6 @@ std::string formatBytes(std::int64_t bytes)
     std::snprintf(text, sizeof(text), "%.2f GB", bytes / 1e9);
   else
     std::snprintf(text, sizeof(text), "%.1f MB", bytes / 1e6);
-  return std::string(text) + " (" + std::to_string(bytes) + " bytes)";
+  return text;
 }
 }  // namespace amcr
