@@ -2,6 +2,7 @@
 // prototype directory, input images of every type, V-particle displacements,
 // and recovery after an error.
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -338,5 +339,36 @@ TEST_F(RecognizerInput, ImageSizeChangeReseeds)
     }
   }
   EXPECT_NO_THROW(recognizer.step(frame_));
+}
+}  // namespace
+
+namespace
+{
+// Issue 12, finding 3: an entry whose type cannot be read is one more unusable file.
+TEST(LoadDirectory, SymlinkLoopIsSkippedWithAWarningNamingIt)
+{
+  amcr_test::TempDir dir;
+  writeImage(dir.file("arrow.png"), amcr_test::drawPrototype(ShapeId::kArrow));
+  std::filesystem::create_symlink(dir.file("loop_b.png"), dir.file("loop_a.png"));
+  std::filesystem::create_symlink(dir.file("loop_a.png"), dir.file("loop_b.png"));
+  std::filesystem::create_symlink(dir.file("missing.png"), dir.file("dangling.png"));
+  Warnings warnings;
+  const amcr::PrototypeMemory memory = amcr::PrototypeMemory::loadDirectory(dir.path(), amcr::Params(), warnings.sink());
+  ASSERT_EQ(memory.size(), 1u);
+  EXPECT_EQ(memory[0].label(), "arrow");
+  EXPECT_TRUE(warnings.mention("loop_a.png")) << "warnings:" << warnings.all();
+  EXPECT_TRUE(warnings.mention("loop_b.png")) << "warnings:" << warnings.all();
+  EXPECT_TRUE(warnings.mention("dangling.png")) << "warnings:" << warnings.all();
+  // A loop as the directory itself is a MemoryError that says why.
+  std::filesystem::create_symlink(dir.file("self"), dir.file("self"));
+  try
+  {
+    amcr::PrototypeMemory::loadDirectory(dir.file("self"), amcr::Params());
+    ADD_FAILURE() << "no MemoryError";
+  }
+  catch (const amcr::MemoryError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("symbolic links"), std::string::npos) << e.what();
+  }
 }
 }  // namespace

@@ -86,7 +86,13 @@ struct Params
   std::uint64_t seed = 0;  ///< seed of the recognizer's random generator
 
   /// Throws ParameterError naming the first parameter out of range (or the
-  /// prototype_priors entry with a negative or non-finite weight).
+  /// prototype_priors entry with a negative or non-finite weight), or the
+  /// pair of parameters where one makes the other meaningless:
+  /// min_support above num_v_particles (nothing could be reported),
+  /// injection_fraction + m_reseed_fraction >= 1 (no M-particle would be
+  /// drawn by its likelihood); and when num_v_particles x
+  /// m_particles_per_prototype alone exceeds kMaxMParticles
+  /// (resource_bounds.h; the prototypes multiply it in the filter).
   void validate() const;
 };
 
@@ -104,7 +110,12 @@ struct ParameterInfo
 const std::vector<ParameterInfo>& parameterTable();
 
 /// Reads parameters from a YAML file (cv::FileStorage) over the defaults in
-/// `params`. Unknown keys and values out of range throw ParameterError.
+/// `params`. Unknown keys and values out of range throw ParameterError, as
+/// does a file that cannot be read (with the reason: no such file,
+/// permission denied, a directory) or parsed (with the line and the reason).
+/// The OpenCV header `%YAML:1.0` may be left out. Whole numbers are read
+/// from their text, so none wraps at 32 bits; a whole number beyond 2^53
+/// (which a double does not hold exactly) is refused.
 Params loadParams(const std::string& yaml_path, Params params = Params());
 
 /// Sets one parameter by name from a number, or (likelihood_form,
@@ -120,6 +131,10 @@ std::string formatPriors(const std::map<std::string, double>& priors);
 
 /// Reads one numeric parameter by name.
 double getParameter(const Params& params, const std::string& name);
+
+/// A number for messages: whole numbers in full (4294967326), others with
+/// up to 15 digits.
+std::string formatNumber(double value);
 
 std::string toString(LikelihoodForm form);
 std::string toString(DeviationSpace space);

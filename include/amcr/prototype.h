@@ -29,6 +29,10 @@ public:
   /// Table distances are stored in units of this many px (0.5 px).
   static constexpr float kDistanceUnit = 0.5f;
 
+  /// Margin around the normalised shape in the table, px, for a shape whose
+  /// longer side is `size` px: rays starting just outside the shape see it.
+  static int tableMargin(int size) { return size / 8 > 8 ? size / 8 : 8; }
+
   /// Builds the prototype from a silhouette image of either polarity (the
   /// background is the colour that dominates the image border). `size` is
   /// the longer side of the shape in the table, px. The table holds what a

@@ -5,9 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
-#include <opencv2/core.hpp>
-
 #include "amcr/errors.h"
+#include "amcr/resource_bounds.h"
 
 namespace amcr
 {
@@ -96,15 +95,50 @@ void checkPrior(const std::string& label, double weight)
     throw ParameterError("parameter 'prototype_priors': the weight of '" + label + "' must be a finite number >= 0");
 }
 
+/// What a parameter that is not a number takes, or nullptr.
+const char* wordParameter(const std::string& name)
+{
+  if (name == "likelihood_form")
+    return "a word (paper or mixture)";
+  if (name == "deviation_space")
+    return "a word (image or prototype)";
+  if (name == "prototype_priors")
+    return "a map of label: weight";
+  return nullptr;
+}
+
 std::string rangeText(const ParameterInfo& info)
 {
   std::ostringstream out;
-  out << "[" << info.min << ", " << info.max << "]";
+  out << "[" << formatNumber(info.min) << ", " << formatNumber(info.max) << "]";
   if (!info.unit.empty())
     out << " " << info.unit;
   return out.str();
 }
+/// Pairs of values where one makes the other meaningless.
+void checkConsistency(const Params& p)
+{
+  if (p.min_support > p.num_v_particles)
+    throw ParameterError("parameter 'min_support' = " + std::to_string(p.min_support) + " is above 'num_v_particles' = " +
+                         std::to_string(p.num_v_particles) + ": no object could ever be reported");
+  if (p.injection_fraction + p.m_reseed_fraction >= 1.0)
+    throw ParameterError("parameters 'injection_fraction' = " + formatNumber(p.injection_fraction) +
+                         " and 'm_reseed_fraction' = " + formatNumber(p.m_reseed_fraction) +
+                         " add up to 1 or more: no M-particle would be drawn by its likelihood");
+  checkParticleBound(p.num_v_particles, p.m_particles_per_prototype,
+                     "m_particles_per_prototype, before the prototypes multiply it");
+}
 }  // namespace
+
+std::string formatNumber(double value)
+{
+  std::ostringstream out;
+  if (std::isfinite(value) && value == std::round(value) && std::abs(value) < 1e16)
+    out << static_cast<long long>(value);  // whole numbers as written: 4294967326, not 4.29497e+09
+  else
+    out << std::setprecision(15) << value;
+  return out.str();
+}
 
 void Params::validate() const
 {
@@ -114,12 +148,14 @@ void Params::validate() const
     if (!std::isfinite(value) || value < p.info.min || value > p.info.max)
     {
       std::ostringstream out;
-      out << "parameter '" << p.info.name << "' = " << value << " is outside its range " << rangeText(p.info);
+      out << "parameter '" << p.info.name << "' = " << formatNumber(value) << " is outside its range "
+          << rangeText(p.info);
       throw ParameterError(out.str());
     }
   }
   for (const auto& prior : prototype_priors)
     checkPrior(prior.first, prior.second);
+  checkConsistency(*this);
 }
 
 const std::vector<ParameterInfo>& parameterTable()
@@ -136,18 +172,21 @@ const std::vector<ParameterInfo>& parameterTable()
 void setParameter(Params& params, const std::string& name, double value)
 {
   const NumericParameter* p = findNumeric(name);
+  if (!p && wordParameter(name))
+    throw ParameterError("parameter '" + name + "' takes " + wordParameter(name) + ", not the number " +
+                         formatNumber(value));
   if (!p)
     throw ParameterError("unknown parameter '" + name + "'");
   if (!std::isfinite(value) || value < p->info.min || value > p->info.max)
   {
     std::ostringstream out;
-    out << "parameter '" << name << "' = " << value << " is outside its range " << rangeText(p->info);
+    out << "parameter '" << name << "' = " << formatNumber(value) << " is outside its range " << rangeText(p->info);
     throw ParameterError(out.str());
   }
   if (p->integer && std::abs(value - std::round(value)) > 1e-9)
   {
     std::ostringstream out;
-    out << "parameter '" << name << "' = " << value << " must be a whole number";
+    out << "parameter '" << name << "' = " << formatNumber(value) << " must be a whole number";
     throw ParameterError(out.str());
   }
   p->set(params, value);
@@ -235,53 +274,6 @@ double getParameter(const Params& params, const std::string& name)
   if (!p)
     throw ParameterError("unknown numeric parameter '" + name + "'");
   return p->get(params);
-}
-
-Params loadParams(const std::string& yaml_path, Params params)
-{
-  cv::FileStorage storage;
-  try
-  {
-    if (!storage.open(yaml_path, cv::FileStorage::READ))
-      throw ParameterError("cannot read the parameter file '" + yaml_path + "'");
-  }
-  catch (const cv::Exception& e)
-  {
-    throw ParameterError("cannot parse the parameter file '" + yaml_path + "': " + e.err);
-  }
-  const cv::FileNode root = storage.root();
-  if (!root.isMap())
-    throw ParameterError("the parameter file '" + yaml_path + "' is not a map of name: value");
-  for (const cv::FileNode& node : root)
-  {
-    const std::string name = node.name();
-    try
-    {
-      if (name == "prototype_priors" && node.isMap())
-      {
-        params.prototype_priors.clear();
-        for (const cv::FileNode& prior : node)
-        {
-          if (!prior.isInt() && !prior.isReal())
-            throw ParameterError("parameter 'prototype_priors': the weight of '" + prior.name() + "' must be a number");
-          checkPrior(prior.name(), static_cast<double>(prior));
-          params.prototype_priors[prior.name()] = static_cast<double>(prior);
-        }
-      }
-      else if (node.isString())
-        setParameter(params, name, static_cast<std::string>(node));
-      else if (node.isInt() || node.isReal())
-        setParameter(params, name, static_cast<double>(node));
-      else
-        throw ParameterError("parameter '" + name + "' must be a number or a word (prototype_priors: a map)");
-    }
-    catch (const ParameterError& e)
-    {
-      throw ParameterError(yaml_path + ": " + e.what());
-    }
-  }
-  params.validate();
-  return params;
 }
 
 std::string toString(LikelihoodForm form) { return form == LikelihoodForm::kPaper ? "paper" : "mixture"; }

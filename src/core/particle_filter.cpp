@@ -12,6 +12,7 @@
 #include "amcr/errors.h"
 #include "amcr/heading_proposal.h"
 #include "amcr/ray_directions.h"
+#include "amcr/resource_bounds.h"
 
 namespace amcr
 {
@@ -25,12 +26,23 @@ std::shared_ptr<const PrototypeMemory> checkedMemory(std::shared_ptr<const Proto
     throw MemoryError("the recognizer needs a prototype memory with at least one prototype");
   return memory;
 }
+
+/// The prior, once the M-particles it asks for are within kMaxMParticles.
+PrototypePrior checkedPrior(const PrototypeMemory& memory, const Params& params)
+{
+  PrototypePrior prior(memory, params);
+  const std::int64_t active = static_cast<std::int64_t>(prior.slots().size()) / params.m_particles_per_prototype;
+  checkParticleBound(params.num_v_particles, static_cast<std::int64_t>(prior.slots().size()),
+                     std::to_string(params.m_particles_per_prototype) + " per prototype x " + std::to_string(active) +
+                         " prototypes of non-zero prior");
+  return prior;
+}
 }  // namespace
 
 ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const PrototypeMemory> memory)
   : params_(params)
   , memory_(checkedMemory(std::move(memory)))
-  , prior_(*memory_, params_)
+  , prior_(checkedPrior(*memory_, params_))
   , policy_(std::make_unique<ReflectAtEdgesPolicy>(params.v_step, params.reflection_jitter))
   , observation_(params)
   , motion_(params)
@@ -48,7 +60,7 @@ void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
 void ParticleFilter::setMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
   memory = checkedMemory(std::move(memory));
-  PrototypePrior prior(*memory, params_);
+  PrototypePrior prior = checkedPrior(*memory, params_);
   memory_ = std::move(memory);
   prior_ = std::move(prior);
   reset();

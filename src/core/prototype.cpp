@@ -74,7 +74,7 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
   const double scale = static_cast<double>(size) / std::max(box.width, box.height);
   const int w = std::max(1, static_cast<int>(std::lround(box.width * scale)));
   const int h = std::max(1, static_cast<int>(std::lround(box.height * scale)));
-  const int margin = std::max(8, size / 8);
+  const int margin = tableMargin(size);
   cv::Mat resized;
   cv::resize(full_mask(box), resized, cv::Size(w, h), 0, 0, scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
   cv::threshold(resized, resized, 127, 255, cv::THRESH_BINARY);

@@ -3,6 +3,7 @@
 
 #include "amcr/object_extractor.h"
 #include "amcr/radial_scan.h"
+#include "amcr/resource_bounds.h"
 
 namespace amcr
 {
@@ -52,6 +53,7 @@ void Recognizer::reset()
 RecognitionResult Recognizer::step(const cv::Mat& image)
 {
   const double start = budget_.now();
+  checkImageBound(image.cols, image.rows, "the input image");  // before any work on it
   const cv::Mat grey = toGray8(image);  // throws InputError before any state changes
   const cv::Mat scan_image = prepareScanImage(grey, params_.blur_sigma);
   const RadialScanner scanner(scan_image, params_.edge_threshold, params_.max_ray_length);

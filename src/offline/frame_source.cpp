@@ -14,6 +14,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "amcr/errors.h"
+#include "amcr/image_file.h"
+
 namespace amcr
 {
 namespace offline
@@ -22,16 +25,18 @@ namespace fs = std::filesystem;
 
 namespace
 {
-/// imread that reports failure as an empty image instead of an exception
-/// (some decoders throw on corrupt files).
-cv::Mat readImage(const std::string& path)
+/// amcr::readImageFile that reports failure as an empty image and the reason
+/// in `problem` instead of an exception (a damaged JPEG or PNG is refused).
+cv::Mat readImage(const std::string& path, std::string* problem = nullptr)
 {
   try
   {
-    return cv::imread(path, cv::IMREAD_UNCHANGED);
+    return readImageFile(path, cv::IMREAD_UNCHANGED);
   }
-  catch (const cv::Exception&)
+  catch (const Error& e)
   {
+    if (problem)
+      *problem = e.what();
     return cv::Mat();
   }
 }
@@ -73,13 +78,8 @@ public:
     frame.index = static_cast<long>(position_);
     const std::string& file = files_[position_++];
     frame.name = file;
-    frame.image = readImage(file);
     frame.problem.clear();
-    if (frame.image.empty())
-    {
-      const std::string why = openProblem(file);
-      frame.problem = "cannot read image '" + file + "'" + (why.empty() ? "" : ": " + why);
-    }
+    frame.image = readImage(file, &frame.problem);
     return true;
   }
 
@@ -263,11 +263,12 @@ std::unique_ptr<FrameSource> FrameSource::open(const std::string& path, long max
   if (!unreadable.empty())
     throw SourceError("cannot read input '" + path + "': " + unreadable);
 
-  cv::Mat image = readImage(path);
+  std::string problem;
+  cv::Mat image = readImage(path, &problem);
   if (!image.empty())
     return std::make_unique<RepeatedImageSource>(image, max_frames, path);
   if (hasImageExtension(path))
-    throw SourceError("cannot read image '" + path + "'");
+    throw SourceError(problem);
 
   std::unique_ptr<cv::VideoCapture> capture = openVideoFile(path);
   if (!capture)
