@@ -79,7 +79,7 @@ private:
 /// from allocating gigabytes on a forged header (OpenCV reads the variable at its first decode).
 inline void setUpOpenCv()
 {
-  setenv("OPENCV_IO_MAX_IMAGE_PIXELS", "4194304", 0);
+  setenv("OPENCV_IO_MAX_IMAGE_PIXELS", "1048576", 0);
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   cv::setNumThreads(0);
 }
