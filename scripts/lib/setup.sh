@@ -73,9 +73,15 @@ amcr_install_packages() {
 # links a libFuzzer target, and says why not when it cannot.
 amcr_install_fuzz_tools() {
   local packages=("${AMCR_FUZZ_PACKAGES[@]}")
-  if [[ -n "$(apt-cache policy libclang-rt-dev 2>/dev/null | sed -n 's/^ *Candidate: //p' | grep -v '(none)')" ]] ||
-    dpkg-query -W libclang-rt-dev >/dev/null 2>&1; then
-    packages+=(libclang-rt-dev)
+  local candidate=(sed -n 's/^ *Candidate: \([^(]\)/\1/p')
+  if [[ -z "$(apt-cache policy clang 2>/dev/null | "${candidate[@]}")" ]] && command -v apt-get >/dev/null; then
+    # A fresh machine's package lists may be empty: then apt knows neither package.
+    local sudo=()
+    ((EUID == 0)) || sudo=(sudo)
+    "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q update || true
+  fi
+  if [[ -n "$(apt-cache policy libclang-rt-dev 2>/dev/null | "${candidate[@]}")" ]]; then
+    packages+=(libclang-rt-dev)  # Debian bookworm: the runtime is only recommended by clang
   fi
   amcr_install_packages "${packages[@]}"
   local probe
