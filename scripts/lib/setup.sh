@@ -24,6 +24,12 @@ AMCR_PACKAGES=(
   librostest-dev python3-rosbag python3-diagnostic-msgs python3-std-srvs
 )
 
+# scripts/fuzz: clang and its libFuzzer runtime. On bookworm the runtime (libclang_rt.fuzzer) is in
+# libclang-rt-dev (libclang-rt-14-dev); on Ubuntu 20.04 it comes with clang (clang-10 ->
+# libclang-common-10-dev), where libclang-rt-dev does not exist: amcr_install_fuzz_tools adds it
+# only when apt knows it.
+AMCR_FUZZ_PACKAGES=(clang cmake)
+
 # Debian's python3, never a pyenv/venv one (ros-on-debian.md, gotcha 1).
 AMCR_CMAKE_ARGS=(-DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3)
 
@@ -38,17 +44,18 @@ amcr_die() {
   exit 1
 }
 
-# Installs the packages of AMCR_PACKAGES that are not installed yet; does nothing (and needs no
-# network or root) when all are there.
+# Installs the packages named (default: AMCR_PACKAGES) that are not installed yet; does nothing
+# (and needs no network or root) when all are there.
 amcr_install_packages() {
   amcr_stage "Debian packages"
-  local missing=() pkg status
-  for pkg in "${AMCR_PACKAGES[@]}"; do
+  local wanted=("$@") missing=() pkg status
+  ((${#wanted[@]} > 0)) || wanted=("${AMCR_PACKAGES[@]}")
+  for pkg in "${wanted[@]}"; do
     status="$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)"
     [[ "$status" == installed ]] || missing+=("$pkg")
   done
   if ((${#missing[@]} == 0)); then
-    echo "all ${#AMCR_PACKAGES[@]} packages are installed"
+    echo "all ${#wanted[@]} packages are installed"
     return 0
   fi
   echo "missing: ${missing[*]}"
@@ -60,6 +67,34 @@ amcr_install_packages() {
   "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q update
   "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q install -y --no-install-recommends \
     -o Dpkg::Use-Pty=0 "${missing[@]}"
+}
+
+# AMCR_FUZZ_PACKAGES, plus libclang-rt-dev where apt knows it (bookworm); then checks that clang++
+# links a libFuzzer target, and says why not when it cannot.
+amcr_install_fuzz_tools() {
+  local packages=("${AMCR_FUZZ_PACKAGES[@]}")
+  local candidate=(sed -n 's/^ *Candidate: \([^(]\)/\1/p')
+  if [[ -z "$(apt-cache policy clang 2>/dev/null | "${candidate[@]}")" ]] && command -v apt-get >/dev/null; then
+    # A fresh machine's package lists may be empty: then apt knows neither package.
+    local sudo=()
+    ((EUID == 0)) || sudo=(sudo)
+    "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q update || true
+  fi
+  if [[ -n "$(apt-cache policy libclang-rt-dev 2>/dev/null | "${candidate[@]}")" ]]; then
+    packages+=(libclang-rt-dev)  # Debian bookworm: the runtime is only recommended by clang
+  fi
+  amcr_install_packages "${packages[@]}"
+  local probe
+  probe="$(mktemp -d)"
+  echo 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }' >"$probe/probe.cpp"
+  if ! clang++ -fsanitize=fuzzer,address,undefined -o "$probe/probe" "$probe/probe.cpp" >"$probe/log" 2>&1; then
+    cat "$probe/log" >&2
+    rm -rf "$probe"
+    amcr_die "cannot fuzz on this machine: clang++ ($(command -v clang++ || echo 'not found')) cannot link a" \
+      "libFuzzer target (-fsanitize=fuzzer: the libclang_rt.fuzzer runtime is missing). On Debian install" \
+      "clang and libclang-rt-dev, on Ubuntu 20.04 clang (libclang-common-10-dev)"
+  fi
+  rm -rf "$probe"
 }
 
 # The environment every catkin and ROS command here runs in (ros-on-debian.md, "Build and test").

@@ -1,0 +1,30 @@
+// The parameter file parser: bytes -> a .yaml file -> amcr::loadParams (cv::FileStorage, the
+// range checks, Params::validate). amcr::Error is an accepted answer; any other exception or a
+// sanitizer report is a finding.
+#include <cstddef>
+#include <cstdint>
+
+#include "amcr/errors.h"
+#include "amcr/params.h"
+#include "fuzz_input.h"
+
+extern "C" int LLVMFuzzerInitialize(int*, char***)
+{
+  amcr_fuzz::setUpOpenCv();
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  static const amcr_fuzz::ScratchDirectory scratch;
+  const std::string path = scratch.write("params.yaml", data, size);
+  try
+  {
+    const amcr::Params params = amcr::loadParams(path);
+    params.validate();  // what loadParams returns must be valid
+  }
+  catch (const amcr::Error&)
+  {
+  }
+  return 0;
+}
