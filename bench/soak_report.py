@@ -39,7 +39,7 @@ def summary(args, target, rows, warm_rows, recorder, outcomes, rss, failures, lo
     seconds = args.interval * len(warm_rows) or 1.0
     figures = {
         "settings": {"minutes": args.minutes, "rate_hz": args.rate, "size": args.size, "process": args.process,
-                     "interval_s": args.interval, "prototypes": sorted(soak_scene.PROTOTYPES), "target": target},
+                     "interval_s": args.interval, "out": args.out, "prototypes": sorted(soak_scene.PROTOTYPES), "target": target},
         "load_average_before_after": loads,
         "input_rate_achieved_hz": round(achieved_rate, 1),
         "published": recorder.published_total, "answered": recorder.answered_total,
@@ -117,4 +117,5 @@ def markdown(figures):
             "latency_max_ms", "processing_median_ms", "unanswered", "reported_share", "load_1min"]
     lines += ["", "## Per interval", "", "| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     lines += ["| " + " | ".join("-" if r[c] is None else str(r[c]) for c in cols) + " |" for r in figures["rows"]]
-    return "\n".join(lines) + "\n"
+    # The output folder is the reader's own: name it <out>, as the options do.
+    return "\n".join(lines).replace(s.get("out") or "\0", "<out>") + "\n"
