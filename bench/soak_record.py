@@ -77,6 +77,7 @@ class Recorder:
         self.published_total = 0
         self.answered_total = 0
         self.last_answer = None
+        self.previous_receipt = None  # receipt time of the last answer of the previous interval
         self.diagnostics = {}
         self.events = []
         self.warm = False
@@ -126,8 +127,11 @@ class Recorder:
             diag = dict(self.diagnostics)
         latency = [a[1] for a in answers]
         processing = [a[2] for a in answers]
-        times = [a[0] for a in answers]
+        # Gaps between answers, the one across the start of the interval included.
+        times = ([self.previous_receipt] if self.previous_receipt is not None else []) + [a[0] for a in answers]
         gaps = [b - a for a, b in zip(times, times[1:])]
+        if times:
+            self.previous_receipt = times[-1]
         status = probe.status()
         with open("/proc/loadavg") as f:
             load = float(f.read().split()[0])

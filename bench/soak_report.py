@@ -1,7 +1,9 @@
-"""The verdict and the summary of a soak run (bench/soak_driver): what fails it, and the figures
-printed at the end and stored in soak.json."""
+"""The verdict and the summary of a soak run (bench/soak_driver): what fails it, the figures
+printed at the end and stored in soak.json and soak.md, and the machine and commit they came from."""
 
+import os
 import statistics
+import subprocess
 
 import soak_record
 import soak_scene
@@ -119,3 +121,27 @@ def markdown(figures):
     lines += ["| " + " | ".join("-" if r[c] is None else str(r[c]) for c in cols) + " |" for r in figures["rows"]]
     # The output folder is the reader's own: name it <out>, as the options do.
     return "\n".join(lines).replace(s.get("out") or "\0", "<out>") + "\n"
+
+
+def load_average():
+    with open("/proc/loadavg") as f:
+        return float(f.read().split()[0])
+
+
+def commit():
+    try:
+        return subprocess.run(["git", "-C", os.path.dirname(os.path.abspath(__file__)), "rev-parse", "--short",
+                               "HEAD"], capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def cpu_name():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return "unknown"
