@@ -72,7 +72,7 @@ def summary(args, target, rows, warm_rows, recorder, outcomes, rss, failures, lo
           % (rss["first_third_mb"], rss["last_third_mb"], args.rss_bound_mb, figures["rss_range_mb"],
              figures["threads_range"], figures["open_fds_range"]))
     print("output: %.1f Hz after warm-up; %d frames published, %d answered, %d not answered"
-          % (figures["output_rate_hz_after_warmup"], recorder.published_total, recorder.answered_total,
+          % (figures["output_rate_hz_after_warmup"], figures["published"], figures["answered"],
              figures["not_answered"]))
     print("latency stamp->receipt: median %s ms, p95 %s ms, max %s ms; processing median %s ms, p95 %s ms"
           % (lat["median"], lat["p95"], lat["max"], proc["median"], proc["p95"]))
