@@ -2,6 +2,7 @@
 // read error and the literal text of whole numbers can be handled), then
 // parsed by cv::FileStorage from memory.
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -188,6 +189,54 @@ void readEntry(const cv::FileNode& node, const std::vector<std::string>& lines, 
 }
 }  // namespace
 
+/// The YAML that a parameter file may hold, checked line by line before
+/// OpenCV reads it, because OpenCV's YAML reader (4.6) never returns on some
+/// malformed files (found by fuzzing: "%YAML:1.0\n---s:0\n\")--\nr", and a
+/// tagged key "!name:" followed by a line "name-"). Allowed: the header on
+/// line 1; one document marker "---" alone on its line; top-level lines
+/// "name: value" or "name:" (a block map follows, indented) with a name of
+/// letters, digits and _, or a flow map "{...}"; indented lines of a map or a
+/// flow value. Refused: other directives, a second document, YAML tags,
+/// anchors, aliases and block scalars (!, &, *, |, >), and any other top-level
+/// line. What passes is plain YAML that OpenCV parses or refuses with a line.
+void checkLineForms(const std::vector<std::string>& lines, const std::string& yaml_path)
+{
+  static const std::string kYamlOnlySigils = "!&*|>%@`";
+  bool started = false;
+  for (std::size_t l = 0; l < lines.size(); ++l)
+  {
+    const std::string& line = lines[l];  // comments removed
+    const std::string where = "cannot parse the parameter file '" + yaml_path + "', line " + std::to_string(l + 1) + ": ";
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || (l == 0 && line.compare(0, 5, "%YAML") == 0))
+      continue;
+    if (line.compare(0, 3, "---") == 0 || line.compare(0, 3, "...") == 0)
+    {
+      if (started || line[0] == '.')
+        throw ParameterError(where + "a second document marker ('" + line.substr(0, 3) + "'): a parameter file is one document");
+      if (line.find_first_not_of(" \t\r", 3) != std::string::npos)
+        throw ParameterError(where + "the document marker '---' must stand alone on its line");
+      started = true;
+      continue;
+    }
+    const std::size_t colon = line.find(':', first);
+    if (first == 0 && line[0] != '{')
+    {
+      std::size_t name_end = 0;
+      while (name_end < line.size() && (std::isalnum(static_cast<unsigned char>(line[name_end])) || line[name_end] == '_'))
+        ++name_end;
+      const std::size_t after = line.find_first_not_of(" \t", name_end);
+      if (name_end == 0 || std::isdigit(static_cast<unsigned char>(line[0])) || after == std::string::npos || line[after] != ':')
+        throw ParameterError(where + "expected 'name: value' (a name of letters, digits and _), not '" + line + "'");
+    }
+    const std::size_t value = colon == std::string::npos ? first : line.find_first_not_of(" \t\r", colon + 1);
+    if (kYamlOnlySigils.find(line[first]) != std::string::npos ||
+        (value != std::string::npos && kYamlOnlySigils.find(line[value]) != std::string::npos))
+      throw ParameterError(where + "YAML tags, anchors, aliases, block scalars and directives (" + kYamlOnlySigils +
+                           ") are not parameter values: '" + line + "'");
+  }
+}
+
 Params loadParams(const std::string& yaml_path, Params params)
 {
   std::string text = readText(yaml_path);
@@ -196,6 +245,7 @@ Params loadParams(const std::string& yaml_path, Params params)
   const bool has_header = text.compare(0, 5, "%YAML") == 0;
   const int added_lines = has_header ? 0 : 1;
   const std::vector<std::string> lines = codeLines(text);
+  checkLineForms(lines, yaml_path);
   if (!has_header)
     text = "%YAML:1.0\n" + text;
   cv::FileStorage storage;
@@ -207,6 +257,10 @@ Params loadParams(const std::string& yaml_path, Params params)
   catch (const cv::Exception& e)
   {
     throw ParameterError("cannot parse the parameter file '" + yaml_path + "', " + parseErrorText(e, added_lines));
+  }
+  catch (const std::exception& e)  // OpenCV's YAML parser also throws std::length_error
+  {
+    throw ParameterError("cannot parse the parameter file '" + yaml_path + "': malformed YAML (" + e.what() + ")");
   }
   const cv::FileNode root = storage.root();
   if (root.empty() || root.isNone())

@@ -1,0 +1,66 @@
+// Inputs the fuzzers (fuzz/, scripts/fuzz) found, each run through the API its fuzz target calls.
+// A new finding: its bytes here, the target that found it, what went wrong.
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "amcr/errors.h"
+#include "amcr/params.h"
+#include "scene_drawing.h"
+
+namespace
+{
+std::string writeFile(const amcr_test::TempDir& dir, const std::string& name, const std::string& bytes)
+{
+  const std::string path = dir.file(name);
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+/// loadParams must refuse the file with a ParameterError naming it (anything else escaping is
+/// what the fuzzer reported).
+void expectParameterErrorNamingTheFile(const std::string& path)
+{
+  try
+  {
+    amcr::loadParams(path);
+    ADD_FAILURE() << "loadParams accepted " << path;
+  }
+  catch (const amcr::ParameterError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+}  // namespace
+
+// fuzz_param_file: OpenCV 4.6's YAML parser throws std::length_error ("basic_string::_M_create"),
+// not cv::Exception, on an empty key after an entry of a nested map; loadParams let it out.
+TEST(FuzzRegression, ParamFileWithAnEmptyKeyInANestedMap)
+{
+  amcr_test::TempDir dir;
+  expectParameterErrorNamingTheFile(writeFile(dir, "empty_key.yaml", "%YAML:1.0\n---\na:\n  b: 1\n  :\n"));
+  // The input as the fuzzer found it (NUL bytes in the header line).
+  const char found[] = "%YAML:1.0\0---\nprototype_priorsML:1.0\0---\nprototype_priors:\n  disc: 2.0\n  :\n"
+                       "  disc: 2.0\n  triangle: 0.5#min_support: 3\n";
+  expectParameterErrorNamingTheFile(writeFile(dir, "found.yaml", std::string(found, sizeof(found) - 1)));
+}
+
+// fuzz_param_file: OpenCV 4.6's YAML reader never returned on these files (a document marker with text
+// after it, then a line with an open quote; a tagged key); loadParams refuses them before OpenCV reads them. Should the
+// guard go, this test hangs instead of failing (CI stops it at its time limit).
+TEST(FuzzRegression, ParamFileOnWhichOpenCVNeverReturns)
+{
+  amcr_test::TempDir dir;
+  expectParameterErrorNamingTheFile(writeFile(dir, "hang.yaml", "%YAML:1.\n---s:0\n\")--\nr"));
+  expectParameterErrorNamingTheFile(writeFile(dir, "two_documents.yaml", "%YAML:1.0\n---\nsigma_w: 5\n---\nsigma_w: 6\n"));
+  expectParameterErrorNamingTheFile(writeFile(dir, "end_marker.yaml", "%YAML:1.0\n---\nsigma_w: 5\n...\n"));
+  // A tagged key followed by a line that is no entry: OpenCV never returned either.
+  expectParameterErrorNamingTheFile(writeFile(dir, "tag.yaml", "%YAML:1.0\n---\n!p:\n  d: 2.0\nmyn-\nl: 3\n"));
+  expectParameterErrorNamingTheFile(writeFile(dir, "anchor.yaml", "%YAML:1.0\n---\nsigma_w: &a 5\n"));
+  expectParameterErrorNamingTheFile(writeFile(dir, "no_entry.yaml", "%YAML:1.0\n---\nsigma_w: 5\nmyn-\n"));
+  // A marker alone on its line, with spaces or a comment after it, stays valid.
+  const std::string valid = writeFile(dir, "valid.yaml", "%YAML:1.0\n---   # parameters\nsigma_w: 6\n");
+  EXPECT_DOUBLE_EQ(amcr::loadParams(valid).sigma_w, 6.0);
+}
+
