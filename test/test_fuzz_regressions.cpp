@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "amcr/errors.h"
+#include "amcr/image_file.h"
 #include "amcr/params.h"
 #include "scene_drawing.h"
 
@@ -62,5 +63,27 @@ TEST(FuzzRegression, ParamFileOnWhichOpenCVNeverReturns)
   // A marker alone on its line, with spaces or a comment after it, stays valid.
   const std::string valid = writeFile(dir, "valid.yaml", "%YAML:1.0\n---   # parameters\nsigma_w: 6\n");
   EXPECT_DOUBLE_EQ(amcr::loadParams(valid).sigma_w, 6.0);
+}
+
+// fuzz_frame_source: a PNG whose header claims 4294967295 x 4294967295 pixels made the image bound
+// multiply the two in 64 bits (signed overflow, UBSan); readImageFile must refuse it naming the bound.
+TEST(FuzzRegression, PngHeaderWithTheLargestSize)
+{
+  amcr_test::TempDir dir;
+  const unsigned char bytes[] = {0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48,
+                                 0x44, 0x52, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x04, 0x00, 0x00, 0x18,
+                                 0x00, 0xff, 0xff, 0xff, 0xdc, 0x00, 0x00, 0x00, 0x00, 0x3f, 0x49, 0x45, 0x4e, 0x44,
+                                 0xae, 0x42, 0x60, 0x82};
+  const std::string path = writeFile(dir, "huge.png", std::string(reinterpret_cast<const char*>(bytes), sizeof(bytes)));
+  try
+  {
+    amcr::readImageFile(path);
+    ADD_FAILURE() << "readImageFile accepted " << path;
+  }
+  catch (const amcr::InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("4294967295 x 4294967295"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("above the bound"), std::string::npos) << e.what();
+  }
 }
 

@@ -46,5 +46,8 @@ void checkParticleBound(std::int64_t v_particles, std::int64_t m_per_v, const st
 void checkImageBound(std::int64_t width, std::int64_t height, const std::string& what);
 
 /// A count of bytes for messages: "1.84 GB", "29.5 MB".
-std::string formatBytes(std::int64_t bytes);
+std::string formatBytes(double bytes);
+
+/// A whole count for messages, also beyond 64 bits ("18446744065119617025").
+std::string formatCount(double count);
 }  // namespace amcr

@@ -8,6 +8,13 @@
 
 namespace amcr
 {
+namespace
+{
+/// Whether a * b > bound for a, b >= 0, without computing a * b (which can
+/// overflow: a PNG header may claim 2^32 - 1 pixels a side).
+bool productExceeds(std::int64_t a, std::int64_t b, std::int64_t bound) { return a > 0 && b > bound / a; }
+}  // namespace
+
 std::int64_t maxTableBytesPerPrototype(int prototype_size)
 {
   const std::int64_t side = prototype_size + 2LL * Prototype::tableMargin(prototype_size);
@@ -16,11 +23,11 @@ std::int64_t maxTableBytesPerPrototype(int prototype_size)
 
 void checkParticleBound(std::int64_t v_particles, std::int64_t m_per_v, const std::string& what)
 {
-  const std::int64_t total = v_particles * m_per_v;
-  if (total <= kMaxMParticles)
+  if (!productExceeds(v_particles, m_per_v, kMaxMParticles))
     return;
+  const double total = static_cast<double>(v_particles) * static_cast<double>(m_per_v);
   throw ParameterError(std::to_string(v_particles) + " V-particles x " + std::to_string(m_per_v) +
-                       " M-particles each (" + what + ") = " + std::to_string(total) + " M-particles, " +
+                       " M-particles each (" + what + ") = " + formatCount(total) + " M-particles, " +
                        formatBytes(total * kBytesPerMParticle) + ": above the bound of " +
                        std::to_string(kMaxMParticles) + " M-particles (" +
                        formatBytes(kMaxMParticles * kBytesPerMParticle) + ")");
@@ -28,14 +35,23 @@ void checkParticleBound(std::int64_t v_particles, std::int64_t m_per_v, const st
 
 void checkImageBound(std::int64_t width, std::int64_t height, const std::string& what)
 {
-  if (width * height <= kMaxImagePixels)
+  if (width < 0 || height < 0)
+    throw InputError(what + " has a negative size (" + std::to_string(width) + " x " + std::to_string(height) + ")");
+  if (!productExceeds(width, height, kMaxImagePixels))
     return;
   throw InputError(what + " is " + std::to_string(width) + " x " + std::to_string(height) + " = " +
-                   std::to_string(width * height) + " pixels: above the bound of " + std::to_string(kMaxImagePixels) +
-                   " pixels (7680 x 4320)");
+                   formatCount(static_cast<double>(width) * static_cast<double>(height)) +
+                   " pixels: above the bound of " + std::to_string(kMaxImagePixels) + " pixels (7680 x 4320)");
 }
 
-std::string formatBytes(std::int64_t bytes)
+std::string formatCount(double count)
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.0f", count);
+  return text;
+}
+
+std::string formatBytes(double bytes)
 {
   char text[64];
   if (bytes >= 1'000'000'000)
