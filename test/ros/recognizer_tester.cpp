@@ -49,6 +49,7 @@
 #include <amcr/Recognitions.h>
 
 #include "../scene_drawing.h"
+#include "reconfigure_request.h"
 
 namespace
 {
@@ -526,17 +527,6 @@ TEST_F(RecognizerTest, ResetRestartsTheFilter)
   EXPECT_EQ(after->iteration, 1);
 }
 
-/// A dynamic_reconfigure request that sets one integer parameter.
-dynamic_reconfigure::Reconfigure intParameterRequest(const std::string& name, int value)
-{
-  dynamic_reconfigure::Reconfigure request;
-  dynamic_reconfigure::IntParameter parameter;
-  parameter.name = name;
-  parameter.value = value;
-  request.request.config.ints.push_back(parameter);
-  return request;
-}
-
 // dynamic_reconfigure: a new particle count rebuilds the filter (iteration 1,
 // the new count in /diagnostics); a new table size rebuilds the prototype
 // tables; the subscription stays and recognitions keep coming.
@@ -545,7 +535,7 @@ TEST_F(RecognizerTest, ReconfigureRebuildsTheFilter)
   ensurePrototypes();
   ASSERT_TRUE(waitForNodeletSubscription());
   ASSERT_TRUE(ros::service::waitForService(node_ + "/set_parameters", ros::Duration(timeout_)));
-  dynamic_reconfigure::Reconfigure srv = intParameterRequest("num_v_particles", 40);
+  dynamic_reconfigure::Reconfigure srv = amcr_test::intParameterRequest("num_v_particles", 40);
   ASSERT_TRUE(ros::service::call(node_ + "/set_parameters", srv));
   bool echoed = false;
   for (const auto& p : srv.response.config.ints)
@@ -564,7 +554,7 @@ TEST_F(RecognizerTest, ReconfigureRebuildsTheFilter)
       timeout_);
   EXPECT_TRUE(report) << "/diagnostics does not show 40 V-particles";
 
-  dynamic_reconfigure::Reconfigure tables = intParameterRequest("prototype_size", 96);
+  dynamic_reconfigure::Reconfigure tables = amcr_test::intParameterRequest("prototype_size", 96);
   ASSERT_TRUE(ros::service::call(node_ + "/set_parameters", tables));
   EXPECT_TRUE(waitForLog(rosgraph_msgs::Log::INFO, "prototype tables and filter rebuilt"));
   auto after = publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp()));

@@ -13,6 +13,7 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include "../scene_drawing.h"
+#include "reconfigure_request.h"
 #include "reconfigure.h"
 #include "recognizer_ros.h"
 
@@ -68,11 +69,7 @@ protected:
   /// `dynparam set` does; the configuration the server answers with.
   dynamic_reconfigure::Config setThroughServer(const std::string& name, int value)
   {
-    dynamic_reconfigure::Reconfigure call;
-    dynamic_reconfigure::IntParameter parameter;
-    parameter.name = name;
-    parameter.value = value;
-    call.request.config.ints.push_back(parameter);
+    dynamic_reconfigure::Reconfigure call = amcr_test::intParameterRequest(name, value);
     EXPECT_TRUE(ros::service::call(namespace_ + "/set_parameters", call)) << namespace_ << "/set_parameters";
     return call.response.config;
   }
