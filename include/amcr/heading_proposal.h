@@ -6,6 +6,7 @@
 // follow are still the likelihood of paper eq. 6.
 #pragma once
 
+#include "amcr/corrected_scan.h"
 #include "amcr/particles.h"
 #include "amcr/prototype.h"
 
@@ -27,4 +28,21 @@ float headingCost(const Prototype& prototype, int x, int y, const RaySignature& 
 /// best of every third bin, then the best of the bins around it; not always
 /// the minimum over all 72 bins (test_heading_proposal.cpp says how close).
 int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature);
+
+/// Where the V-particle's feature rays land in the table under a view shape
+/// (corrected_scan.h): ray k at bin offset `bin[k]` from the heading's bin
+/// (the paper: 9 k) and `log_scale[k]` longer in log units than the others
+/// (the paper: 0), for a V-particle of heading `v_heading`.
+struct RayOffsets
+{
+  int bin[kFeatureRays];
+  float log_scale[kFeatureRays];
+  /// The offsets of view shape (xx, xy, yy) (det 1, input image frame).
+  RayOffsets(const float shape[3], float v_heading);
+};
+
+/// bestHeadingBin with the rays compared at `offsets`, so that an oblique
+/// view's M-particle starts aligned too; the same as the paper's for a
+/// frontal shape.
+int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature, const RayOffsets& offsets);
 }  // namespace amcr

@@ -20,9 +20,10 @@ struct Control
 class MotionModel
 {
 public:
-  /// Reads motion_noise_translation and motion_noise_rotation.
+  /// Reads motion_noise_translation, motion_noise_rotation and, with
+  /// ray_correspondence affine, motion_noise_shape.
   explicit MotionModel(const Params& params);
-  MotionModel(double noise_translation, double noise_rotation);
+  MotionModel(double noise_translation, double noise_rotation, double noise_shape = 0.0);
 
   /// Moves V-particle `v` by `u` (turn, then move along the new heading).
   static void moveV(VParticle& v, const Control& u);
@@ -31,12 +32,14 @@ public:
   /// (paper 4.2). `v_heading` is the V-particle's heading before the move.
   /// A particle without a valid A maps the move by the rotation that takes
   /// the V heading onto its own. Noise: translation sigma in table px,
-  /// rotation sigma in rad.
+  /// rotation sigma in rad, and (when noise_shape > 0) the view shape
+  /// diffused by diffuseShape of corrected_scan.h.
   void moveM(MParticleSet& m, std::size_t begin, std::size_t end, double v_heading, const Control& u,
              Rng& rng) const;
 
 private:
   double noise_translation_;
   double noise_rotation_;
+  double noise_shape_;
 };
 }  // namespace amcr

@@ -22,7 +22,8 @@ class ObservationModel
 {
 public:
   /// Reads sigma_w, p_outlier, p_invalid, likelihood_form, max_ray_length,
-  /// min_triangle_area, max_affine_scale and deviation_space.
+  /// min_triangle_area, max_affine_scale, deviation_space,
+  /// ray_correspondence and affine_refits.
   explicit ObservationModel(const Params& params);
 
   /// log p(dw) of one valid ray with deviation dw px (paper eq. 5, or the
@@ -50,6 +51,11 @@ public:
   /// value of 8 invalid rays when there is no A). Every one of them must lie
   /// inside its prototype's table (insideTable of relational_update.h; the
   /// caller re-seeds the others first), else InputError. Draws nothing.
+  /// With ray_correspondence affine (corrected_scan.h) the lookups follow
+  /// the affine, starting from each M-particle's view shape turned onto its
+  /// heading, with affine_refits re-estimates of A (default none: each one
+  /// lets every hypothesis fit itself to what it sees, and the likelihood
+  /// tells them apart less; README, "Oblique views").
   void measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
                std::size_t end) const;
 
@@ -59,6 +65,12 @@ public:
   /// invalid in v or in the table, eq. 5 (tabulated) for the others.
   float logLikelihood(const VRayEnds& v, const std::uint8_t* raw, const cv::Point& at, int bin,
                       const RelationalAffine& affine) const;
+
+  /// log p(z_v | m) of eq. 6 with the affine-corrected lookups: feature ray
+  /// k is compared with the table ray of direction shape * d_k, where shape
+  /// is the linear part of `affine` (image -> table).
+  float correctedLogLikelihood(const VRayEnds& v, const std::uint8_t* raw, const cv::Point& at, const float shape[4],
+                               const RelationalAffine& affine) const;
 
 private:
   double sigma_w_;
@@ -71,5 +83,7 @@ private:
   float min_triangle_area_;
   float max_affine_scale_;
   DeviationSpace deviation_space_;
+  RayCorrespondence ray_correspondence_;
+  int affine_refits_;
 };
 }  // namespace amcr

@@ -24,6 +24,13 @@ enum class DeviationSpace
   kPrototype,  ///< input points mapped into the prototype by A, as in the paper
 };
 
+/// Which table ray a V-particle's image ray is compared with.
+enum class RayCorrespondence
+{
+  kPaper,   ///< the ray at the same angle from the M-particle's heading (paper 4.1; exact for similarities)
+  kAffine,  ///< the ray in the direction the relational affine maps the image ray to (oblique views)
+};
+
 struct Params
 {
   // Particle counts.
@@ -46,6 +53,10 @@ struct Params
   double p_invalid = 0.1;         ///< probability of an invalid ray [0, 1]; paper 0.1
   double min_triangle_area = 20;  ///< smaller affine triangles are degenerate, px^2 [0, 1e6]
   double max_affine_scale = 8.0;  ///< largest accepted scale ratio of A (either way) [1, 100]
+  RayCorrespondence ray_correspondence = RayCorrespondence::kAffine;
+  int affine_refits = 0;          ///< re-estimates of A from affine-corrected triangle rays [0, 5]
+  double max_anisotropy = 3.0;    ///< largest anisotropy of the view shapes new M-particles get [1, 10]; 1 = frontal
+  double motion_noise_shape = 0.05;  ///< M-particle view-shape noise per iteration [0, 1]
 
   // Motion model (paper 4.2) and exploration policy (paper 4.3).
   double v_step = 4.0;                   ///< forward step of a V-particle per iteration, input px [0, 100]
@@ -138,4 +149,5 @@ std::string formatNumber(double value);
 
 std::string toString(LikelihoodForm form);
 std::string toString(DeviationSpace space);
+std::string toString(RayCorrespondence correspondence);
 }  // namespace amcr

@@ -56,6 +56,13 @@ struct VParticleMove
   float theta = 0.f;  ///< rad (kWithTrack only)
 };
 
+/// Whether MParticleSet::affine holds an affine for one M-particle.
+enum AffineState : std::uint8_t
+{
+  kNoAffine = 0,      ///< nothing: the heading alone orients the lookups
+  kFittedAffine = 1,  ///< A of the last relational update (paper 4.1)
+};
+
 /// All M-particles of all V-particles.
 struct MParticleSet
 {
@@ -66,7 +73,13 @@ struct MParticleSet
   /// A: input image -> prototype table, row-major 2x3 (paper: the affine of
   /// the relational particle (v, m), stored in m).
   std::array<std::vector<float>, 6> affine;
-  std::vector<std::uint8_t> affine_valid;
+  std::vector<std::uint8_t> affine_valid;  ///< an AffineState
+  /// ray_correspondence affine: the view shape the M-particle assumes, the
+  /// symmetric part P of A = R P scaled to det 1, row-major (xx, xy, yy);
+  /// (1, 0, 1) for a frontal view. Part of its state like the heading: drawn
+  /// at seeding, diffused by the motion model, kept through resampling
+  /// (corrected_scan.h).
+  std::array<std::vector<float>, 3> shape;
   std::vector<float> log_likelihood;  ///< log p(z_k | m) of the last update
 
   std::size_t size() const { return x.size(); }

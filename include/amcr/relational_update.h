@@ -27,6 +27,10 @@ struct VRayEnds
   float triangle_x[kTriangleRays];   ///< end of triangle ray t (theta + t * 120 deg); t = 0 is feature ray 0
   float triangle_y[kTriangleRays];
   bool triangle_valid = false;       ///< whether all three triangle rays met an edge
+  float feature_dx[kFeatureRays];    ///< unit direction of feature ray k in the input image
+  float feature_dy[kFeatureRays];
+  float triangle_dx[kTriangleRays];  ///< unit direction of triangle ray t in the input image
+  float triangle_dy[kTriangleRays];
 };
 
 /// The ray end points of `v`. `distance` and `valid` hold the 8 feature rays

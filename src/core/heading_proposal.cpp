@@ -41,15 +41,23 @@ struct LogSignature
   }
 };
 
+/// The paper's offsets: ray k at 9 k bins, no scale.
+const RayOffsets& frontalOffsets()
+{
+  static const RayOffsets offsets(kFrontalShape, 0.f);
+  return offsets;
+}
+
 /// headingCost (heading_proposal.h) on the raw table distances of a pixel.
-float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bool* v_valid)
+float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bool* v_valid,
+                  const RayOffsets& offsets)
 {
   const std::array<float, 256>& logs = logTable();
   float sum = 0.f, sum_sq = 0.f, cost = 0.f;
   int both = 0;
   for (int k = 0; k < kFeatureRays; ++k)
   {
-    const std::uint8_t d = raw[(bin + k * kFeatureBinStep) % kDirectionBins];
+    const std::uint8_t d = raw[(bin + offsets.bin[k]) % kDirectionBins];
     const bool m_valid = d != Prototype::kNoEdge;
     if (m_valid != v_valid[k])
     {
@@ -58,7 +66,7 @@ float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bo
     }
     if (!m_valid)
       continue;
-    const float diff = logs[d] - v_log[k];
+    const float diff = logs[d] - offsets.log_scale[k] - v_log[k];
     sum += diff;
     sum_sq += diff * diff;
     ++both;
@@ -70,10 +78,34 @@ float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bo
 float headingCost(const Prototype& prototype, int x, int y, const RaySignature& signature, int bin)
 {
   const LogSignature v(signature);
-  return headingCost(prototype.rawDistances(x, y), bin, v.log, v.valid);
+  return headingCost(prototype.rawDistances(x, y), bin, v.log, v.valid, frontalOffsets());
+}
+
+RayOffsets::RayOffsets(const float shape[3], float v_heading)
+{
+  // Relative to ray 0: the direction and the length the shape maps ray k to.
+  float angle[kFeatureRays];
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const double a = v_heading + k * kFeatureBinStep * kBinAngle;
+    const double dx = std::cos(a), dy = std::sin(a);
+    const double x = shape[0] * dx + shape[1] * dy, y = shape[1] * dx + shape[2] * dy;
+    angle[k] = static_cast<float>(std::atan2(y, x));
+    log_scale[k] = static_cast<float>(0.5 * std::log(x * x + y * y));
+  }
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const int offset = angleToBin(angle[k] - angle[0]);
+    bin[k] = k == 0 ? 0 : offset;
+  }
 }
 
 int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature)
+{
+  return bestHeadingBin(prototype, x, y, signature, frontalOffsets());
+}
+
+int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature, const RayOffsets& offsets)
 {
   if (signature.valid_rays() < 3)
     return -1;
@@ -86,7 +118,7 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
   float best_cost = std::numeric_limits<float>::infinity();
   for (int bin = 0; bin < kDirectionBins; bin += kCoarseBinStep)
   {
-    const float cost = headingCost(raw, bin, v_log, v_valid);
+    const float cost = headingCost(raw, bin, v_log, v_valid, offsets);
     if (cost < best_cost)
     {
       best_cost = cost;
@@ -97,7 +129,7 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
   for (int offset = 1 - kCoarseBinStep; offset < kCoarseBinStep; ++offset)
   {
     const int bin = (coarse + offset + kDirectionBins) % kDirectionBins;
-    const float cost = offset == 0 ? best_cost : headingCost(raw, bin, v_log, v_valid);
+    const float cost = offset == 0 ? best_cost : headingCost(raw, bin, v_log, v_valid, offsets);
     if (cost < best_cost)
     {
       best_cost = cost;

@@ -2,15 +2,18 @@
 
 #include <cmath>
 
+#include "amcr/corrected_scan.h"
+
 namespace amcr
 {
 MotionModel::MotionModel(const Params& params)
-  : MotionModel(params.motion_noise_translation, params.motion_noise_rotation)
+  : MotionModel(params.motion_noise_translation, params.motion_noise_rotation,
+                params.ray_correspondence == RayCorrespondence::kAffine ? params.motion_noise_shape : 0.0)
 {
 }
 
-MotionModel::MotionModel(double noise_translation, double noise_rotation)
-  : noise_translation_(noise_translation), noise_rotation_(noise_rotation)
+MotionModel::MotionModel(double noise_translation, double noise_rotation, double noise_shape)
+  : noise_translation_(noise_translation), noise_rotation_(noise_rotation), noise_shape_(noise_shape)
 {
 }
 
@@ -32,7 +35,7 @@ void MotionModel::moveM(MParticleSet& m, std::size_t begin, std::size_t end, dou
   for (std::size_t i = begin; i < end; ++i)
   {
     double l00, l01, l10, l11;
-    if (m.affine_valid[i])
+    if (m.affine_valid[i] == kFittedAffine)
     {
       l00 = m.affine[0][i];
       l01 = m.affine[1][i];
@@ -56,6 +59,14 @@ void MotionModel::moveM(MParticleSet& m, std::size_t begin, std::size_t end, dou
     m.theta[i] = static_cast<float>(m.theta[i] + turn + rng.gaussian(noise_rotation_));
     m.x[i] = static_cast<float>(m.x[i] + u.translation * mapped_new_x + rng.gaussian(noise_translation_));
     m.y[i] = static_cast<float>(m.y[i] + u.translation * mapped_new_y + rng.gaussian(noise_translation_));
+    if (noise_shape_ > 0.0)
+    {
+      const float e1 = static_cast<float>(rng.gaussian(noise_shape_)), e2 = static_cast<float>(rng.gaussian(noise_shape_));
+      float shape[3] = {m.shape[0][i], m.shape[1][i], m.shape[2][i]};
+      diffuseShape(e1, e2, shape);
+      for (int k = 0; k < 3; ++k)
+        m.shape[k][i] = shape[k];
+    }
   }
 }
 }  // namespace amcr

@@ -77,7 +77,7 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
   for (std::size_t i = begin; i < end; ++i)
   {
     const float dx = m.x[i] - centre.x, dy = m.y[i] - centre.y;
-    if (m.prototype[i] != k || dx * dx + dy * dy > r2 || !m.affine_valid[i])
+    if (m.prototype[i] != k || dx * dx + dy * dy > r2 || m.affine_valid[i] != kFittedAffine)
       continue;
     for (int j = 0; j < 6; ++j)
       a[j] += m.affine[j][i];

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "amcr/corrected_scan.h"
 #include "amcr/errors.h"
 #include "amcr/particles.h"
 #include "amcr/prototype_memory.h"
@@ -14,7 +15,14 @@ namespace amcr
 namespace
 {
 constexpr int kTableEntries = 4096;  // tabulated over dw^2 in [0, (8 sigma_w)^2]
+
+void storeAffine(const RelationalAffine& affine, MParticleSet& m, std::size_t i)
+{
+  for (int e = 0; e < 6; ++e)
+    m.affine[e][i] = affine.image_to_table[e];
+  m.affine_valid[i] = kFittedAffine;
 }
+}  // namespace
 
 ObservationModel::ObservationModel(const Params& params)
   : sigma_w_(params.sigma_w)
@@ -25,6 +33,8 @@ ObservationModel::ObservationModel(const Params& params)
   , min_triangle_area_(static_cast<float>(params.min_triangle_area))
   , max_affine_scale_(static_cast<float>(params.max_affine_scale))
   , deviation_space_(params.deviation_space)
+  , ray_correspondence_(params.ray_correspondence)
+  , affine_refits_(params.affine_refits)
 {
   const double max_squared = 64.0 * sigma_w_ * sigma_w_;
   const double step = max_squared / (kTableEntries - 1);
@@ -54,22 +64,58 @@ void ObservationModel::measure(const PrototypeMemory& memory, const VRayEnds& v,
     if (!insideTable(p, at))
       throw InputError("ObservationModel::measure: M-particle " + std::to_string(i) + " lies outside the table of '" +
                        p.label() + "'");
-    m.affine_valid[i] = 0;
+    m.affine_valid[i] = kNoAffine;
     m.log_likelihood[i] = all_invalid;
     if (!v.triangle_valid)
       continue;
-    const int bin = angleToBin(m.theta[i]);
     const std::uint8_t* raw = p.rawDistances(at.x, at.y);
-    float table_x[kTriangleRays], table_y[kTriangleRays];
     RelationalAffine affine;
+    if (ray_correspondence_ == RayCorrespondence::kAffine)
+    {
+      // The first lookup assumes the V-particle's view shape, turned onto the
+      // M-particle's heading; the fixed point of fitCorrectedAffine refines it.
+      const float assumed[4] = {m.shape[0][i], m.shape[1][i], m.shape[1][i], m.shape[2][i]};
+      float shape[4];
+      startingShape(assumed, m.theta[i], v.feature_dx[0], v.feature_dy[0], shape);
+      if (!fitCorrectedAffine(raw, at, shape, v, affine_refits_, min_triangle_area_, max_affine_scale_, affine))
+        continue;
+      linearPart(affine, shape);
+      storeAffine(affine, m, i);
+      m.log_likelihood[i] = correctedLogLikelihood(v, raw, at, shape, affine);
+      continue;
+    }
+    const int bin = angleToBin(m.theta[i]);
+    float table_x[kTriangleRays], table_y[kTriangleRays];
     if (!tableTriangle(raw, at, bin, table_x, table_y) ||
         !fitRelationalAffine(table_x, table_y, v, min_triangle_area_, max_affine_scale_, affine))
       continue;
-    for (int e = 0; e < 6; ++e)
-      m.affine[e][i] = affine.image_to_table[e];
-    m.affine_valid[i] = 1;
+    storeAffine(affine, m, i);
     m.log_likelihood[i] = logLikelihood(v, raw, at, bin, affine);
   }
+}
+
+// Paper eq. 6 with the affine-corrected lookups of corrected_scan.h: feature
+// ray k is compared with the table ray of direction L d_k.
+float ObservationModel::correctedLogLikelihood(const VRayEnds& v, const std::uint8_t* raw, const cv::Point& at,
+                                               const float shape[4], const RelationalAffine& affine) const
+{
+  const float log_invalid = static_cast<float>(log_invalid_);
+  float log_l = v.invalid_feature_rays * log_invalid;
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    if (!v.feature_valid[k])
+      continue;
+    float table_x, table_y;
+    if (!correctedRayEnd(raw, at, tableDirection(shape, v.feature_dx[k], v.feature_dy[k]), table_x, table_y))
+    {
+      log_l += log_invalid;
+      continue;
+    }
+    const float dw_squared =
+        squaredDeviation(affine, deviation_space_, table_x, table_y, v.feature_x[k], v.feature_y[k]);
+    log_l += logRayFromSquared(dw_squared);
+  }
+  return log_l;
 }
 
 // Paper eq. 6: the product over the feature rays of p(dw_j) (eq. 5) for a ray

@@ -48,6 +48,9 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(p_invalid, "", 0, 1, "probability of an invalid ray (eq. 6); paper 0.1"),
       AMCR_DOUBLE(min_triangle_area, "px^2", 0, 1e6, "smaller affine triangles are degenerate"),
       AMCR_DOUBLE(max_affine_scale, "", 1, 100, "largest accepted scale of A, either way"),
+      AMCR_INT(affine_refits, "", 0, 5, "re-estimates of A from the affine-corrected triangle rays (ray_correspondence affine)"),
+      AMCR_DOUBLE(max_anisotropy, "", 1, 10, "largest anisotropy (singular value ratio; 3 = 70 deg off the normal) of the view shapes new M-particles get (ray_correspondence affine); 1 = frontal only"),
+      AMCR_DOUBLE(motion_noise_shape, "", 0, 1, "M-particle view-shape noise per iteration, about the change of log anisotropy (ray_correspondence affine)"),
       AMCR_DOUBLE(v_step, "px", 0, 100, "forward step of a V-particle per iteration"),
       AMCR_DOUBLE(motion_noise_translation, "prototype px", 0, 100, "M-particle translation noise"),
       AMCR_DOUBLE(motion_noise_rotation, "rad", 0, 3.15, "M-particle rotation noise"),
@@ -102,6 +105,8 @@ const char* wordParameter(const std::string& name)
     return "a word (paper or mixture)";
   if (name == "deviation_space")
     return "a word (image or prototype)";
+  if (name == "ray_correspondence")
+    return "a word (affine or paper)";
   if (name == "prototype_priors")
     return "a map of label: weight";
   return nullptr;
@@ -214,6 +219,16 @@ void setParameter(Params& params, const std::string& name, const std::string& va
       throw ParameterError("parameter 'deviation_space' = '" + value + "' must be 'image' or 'prototype'");
     return;
   }
+  if (name == "ray_correspondence")
+  {
+    if (value == "affine")
+      params.ray_correspondence = RayCorrespondence::kAffine;
+    else if (value == "paper")
+      params.ray_correspondence = RayCorrespondence::kPaper;
+    else
+      throw ParameterError("parameter 'ray_correspondence' = '" + value + "' must be 'affine' or 'paper'");
+    return;
+  }
   if (name == "prototype_priors")
   {
     params.prototype_priors = parsePriors(value);
@@ -279,4 +294,9 @@ double getParameter(const Params& params, const std::string& name)
 std::string toString(LikelihoodForm form) { return form == LikelihoodForm::kPaper ? "paper" : "mixture"; }
 
 std::string toString(DeviationSpace space) { return space == DeviationSpace::kImage ? "image" : "prototype"; }
+
+std::string toString(RayCorrespondence correspondence)
+{
+  return correspondence == RayCorrespondence::kAffine ? "affine" : "paper";
+}
 }  // namespace amcr

@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "amcr/corrected_scan.h"
 #include "amcr/errors.h"
 #include "amcr/heading_proposal.h"
 #include "amcr/ray_directions.h"
@@ -89,7 +90,7 @@ void ParticleFilter::seed(const RadialScanner& scanner)
   for (std::size_t i = 0; i < v_.size(); ++i)
   {
     seedV(v_[i], scanner);
-    seedMRange(m_, i * per_v, (i + 1) * per_v, v_[i].rays);
+    seedMRange(m_, i * per_v, (i + 1) * per_v, v_[i]);
   }
   leading_.clear();
 }
@@ -124,28 +125,54 @@ void ParticleFilter::seedV(VParticle& v, const RadialScanner& scanner)
   }
 }
 
-void ParticleFilter::seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const RaySignature& rays)
+void ParticleFilter::seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const VParticle& v)
 {
   for (std::size_t j = 0; j < end - begin; ++j)
-    seedM(set, begin + j, prior_.slots()[j], rays);
+    seedM(set, begin + j, prior_.slots()[j], v);
 }
 
 // A uniform position inside the prototype; the heading from the proposal
 // (heading_proposal.h) when the V-particle sees enough edges, else uniform.
-void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, const RaySignature& rays)
+// With ray_correspondence affine, first a view shape, which the heading
+// proposal then matches the rays under.
+void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v)
 {
   const Prototype& p = (*memory_)[prototype];
   const cv::Point& at = p.interior()[rng_.index(p.interior().size())];
   set.x[index] = static_cast<float>(at.x);
   set.y[index] = static_cast<float>(at.y);
-  const int bin = bestHeadingBin(p, at.x, at.y, rays);
+  int bin = -1;
+  if (params_.ray_correspondence == RayCorrespondence::kAffine)
+  {
+    drawShape(set, index);
+    const float shape[3] = {set.shape[0][index], set.shape[1][index], set.shape[2][index]};
+    bin = bestHeadingBin(p, at.x, at.y, v.rays, RayOffsets(shape, v.theta));
+  }
+  else
+  {
+    bin = bestHeadingBin(p, at.x, at.y, v.rays);
+  }
   const double heading = bin >= 0 ? binToAngle(bin) : rng_.uniform(-M_PI, M_PI);
   set.theta[index] = static_cast<float>(wrapAngle(heading));
   set.prototype[index] = prototype;
   for (auto& a : set.affine)
     a[index] = 0.f;
-  set.affine_valid[index] = 0;
+  set.affine_valid[index] = kNoAffine;
   set.log_likelihood[index] = static_cast<float>(kFeatureRays * observation_.logInvalid());
+}
+
+// The view shape of a new M-particle: frontal for half of them (views are
+// often near frontal, and those must not lose their particles to the
+// search), else anisotropy log-uniform in [1, max_anisotropy] along a
+// uniform axis. The scale is left to the triangle fit.
+void ParticleFilter::drawShape(MParticleSet& set, std::size_t index)
+{
+  float shape[3] = {kFrontalShape[0], kFrontalShape[1], kFrontalShape[2]};
+  if (params_.max_anisotropy > 1.0 && rng_.uniform() < 0.5)
+    obliqueShape(static_cast<float>(std::exp(rng_.uniform(0.0, std::log(params_.max_anisotropy)))),
+                 static_cast<float>(rng_.uniform(0.0, M_PI)), shape);
+  for (int k = 0; k < 3; ++k)
+    set.shape[k][index] = shape[k];
 }
 
 // ---------------------------------------------------------------------------
@@ -219,7 +246,7 @@ int ParticleFilter::applyFlow(const std::vector<VParticleMove>& moves, const Rad
         break;
       case VParticleMove::Kind::kLost:
         seedV(v, scanner);
-        seedMRange(m_, i * per_v, (i + 1) * per_v, v.rays);
+        seedMRange(m_, i * per_v, (i + 1) * per_v, v);
         ++lost;
         break;
     }

@@ -35,7 +35,7 @@ void ParticleFilter::measure(int v_index, const RadialScanner& scanner)
   const std::size_t end = begin + mParticlesPerV();
   for (std::size_t i = begin; i < end; ++i)
     if (!insideTable((*memory_)[m_.prototype[i]], nearestTablePixel(m_.x[i], m_.y[i])))
-      seedM(m_, i, m_.prototype[i], v.rays);
+      seedM(m_, i, m_.prototype[i], v);
   // The relational update of paper 4.1 and eqs. 5-6 (ObservationModel::measure).
   observation_.measure(*memory_, rayEnds(v, v_dist, v_valid), m_, begin, end);
 }

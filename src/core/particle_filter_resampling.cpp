@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "amcr/corrected_scan.h"
 #include "amcr/particle_filter.h"
 #include "amcr/resampling.h"
 
@@ -47,7 +48,7 @@ void ParticleFilter::resampleM(int v_index)
   for (int j = 0; j < n_inject; ++j, ++k)
     injectM(v, leading_[j % leading_.size()], begin + k, worst);
   for (int j = 0; j < n_reseed; ++j, ++k)
-    seedM(m_scratch_, begin + k, prior_.draw(rng_), v.rays);
+    seedM(m_scratch_, begin + k, prior_.draw(rng_), v);
   m_.copyRange(m_scratch_, begin, begin + per_v);
 }
 
@@ -61,7 +62,7 @@ void ParticleFilter::injectM(const VParticle& v, const LeadingHypothesis& h, std
   const cv::Point2d at = applyAffine(a, cv::Point2d(v.x, v.y));
   if (at.x < 0 || at.y < 0 || at.x > p.width() - 1 || at.y > p.height() - 1)
   {
-    seedM(m_scratch_, index, h.prototype, v.rays);
+    seedM(m_scratch_, index, h.prototype, v);
     return;
   }
   const double hx = std::cos(v.theta), hy = std::sin(v.theta);
@@ -72,7 +73,13 @@ void ParticleFilter::injectM(const VParticle& v, const LeadingHypothesis& h, std
   m_scratch_.prototype[index] = h.prototype;
   for (int e = 0; e < 6; ++e)
     m_scratch_.affine[e][index] = static_cast<float>(a(e / 3, e % 3));
-  m_scratch_.affine_valid[index] = 1;
+  m_scratch_.affine_valid[index] = kFittedAffine;
+  float fitted[6], shape[3];
+  for (int e = 0; e < 6; ++e)
+    fitted[e] = m_scratch_.affine[e][index];
+  if (params_.ray_correspondence == RayCorrespondence::kAffine && viewShape(fitted, shape))
+    for (int k = 0; k < 3; ++k)
+      m_scratch_.shape[k][index] = shape[k];
   m_scratch_.log_likelihood[index] = worst;
 }
 
@@ -129,7 +136,7 @@ std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
     if (from < 0)
     {
       seedV(next[k], scanner);
-      seedMRange(m_scratch_, begin, end, next[k].rays);
+      seedMRange(m_scratch_, begin, end, next[k]);
       continue;
     }
     next[k] = v_[from];

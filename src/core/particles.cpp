@@ -35,6 +35,8 @@ void MParticleSet::resize(std::size_t n)
   for (auto& a : affine)
     a.resize(n);
   affine_valid.resize(n);
+  for (auto& s : shape)
+    s.resize(n, 0.f);
   log_likelihood.resize(n);
 }
 
@@ -49,6 +51,8 @@ void MParticleSet::copyFrom(const MParticleSet& source, std::size_t from, std::s
   for (int k = 0; k < 6; ++k)
     affine[k][to] = source.affine[k][from];
   affine_valid[to] = source.affine_valid[from];
+  for (int k = 0; k < 3; ++k)
+    shape[k][to] = source.shape[k][from];
   log_likelihood[to] = source.log_likelihood[from];
 }
 void MParticleSet::copyRange(const MParticleSet& source, std::size_t begin, std::size_t end)
@@ -63,6 +67,8 @@ void MParticleSet::copyRange(const MParticleSet& source, std::size_t begin, std:
   for (int k = 0; k < 6; ++k)
     range(source.affine[k], affine[k]);
   range(source.affine_valid, affine_valid);
+  for (int k = 0; k < 3; ++k)
+    range(source.shape[k], shape[k]);
   range(source.log_likelihood, log_likelihood);
 }
 }  // namespace amcr

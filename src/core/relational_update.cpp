@@ -21,6 +21,8 @@ VRayEnds rayEnds(const VParticle& v, const float* distance, const bool* valid)
   for (int k = 0; k < kFeatureRays; ++k)
   {
     const double a = v.theta + k * kFeatureBinStep * kBinAngle;
+    ends.feature_dx[k] = static_cast<float>(std::cos(a));
+    ends.feature_dy[k] = static_cast<float>(std::sin(a));
     ends.feature_x[k] = static_cast<float>(v.x + distance[k] * std::cos(a));
     ends.feature_y[k] = static_cast<float>(v.y + distance[k] * std::sin(a));
     ends.feature_valid[k] = valid[k];
@@ -28,9 +30,13 @@ VRayEnds rayEnds(const VParticle& v, const float* distance, const bool* valid)
   }
   ends.triangle_x[0] = ends.feature_x[0];
   ends.triangle_y[0] = ends.feature_y[0];
+  ends.triangle_dx[0] = ends.feature_dx[0];
+  ends.triangle_dy[0] = ends.feature_dy[0];
   for (int t = 1; t < kTriangleRays; ++t)
   {
     const double a = v.theta + t * kTriangleBinStep * kBinAngle;
+    ends.triangle_dx[t] = static_cast<float>(std::cos(a));
+    ends.triangle_dy[t] = static_cast<float>(std::sin(a));
     ends.triangle_x[t] = static_cast<float>(v.x + distance[kFeatureRays + t - 1] * std::cos(a));
     ends.triangle_y[t] = static_cast<float>(v.y + distance[kFeatureRays + t - 1] * std::sin(a));
   }

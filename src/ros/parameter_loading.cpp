@@ -51,7 +51,7 @@ amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::stri
     if (notes)
       notes->push_back(info.name + " = " + std::to_string(value));
   }
-  for (const char* name : {"likelihood_form", "deviation_space"})
+  for (const char* name : {"likelihood_form", "deviation_space", "ray_correspondence"})
   {
     if (!private_nh.hasParam(name))
       continue;

@@ -35,6 +35,8 @@ std::string textParameter(const amcr::Params& params, const std::string& name)
     return amcr::toString(params.likelihood_form);
   if (name == "deviation_space")
     return amcr::toString(params.deviation_space);
+  if (name == "ray_correspondence")
+    return amcr::toString(params.ray_correspondence);
   if (name == "prototype_priors")
     return amcr::formatPriors(params.prototype_priors);
   throw amcr::ParameterError("cfg/AMCR.cfg has the string parameter '" + name + "', which amcr::Params does not know");
@@ -151,6 +153,8 @@ std::string describeChanges(const amcr::Params& before, const amcr::Params& afte
     note("likelihood_form " + amcr::toString(after.likelihood_form));
   if (after.deviation_space != before.deviation_space)
     note("deviation_space " + amcr::toString(after.deviation_space));
+  if (after.ray_correspondence != before.ray_correspondence)
+    note("ray_correspondence " + amcr::toString(after.ray_correspondence));
   if (after.prototype_priors != before.prototype_priors)
     note("prototype_priors '" + amcr::formatPriors(after.prototype_priors) + "'");
   return out;

@@ -29,7 +29,7 @@ TEST(ReconfigureTable, SameParametersRangesAndDefaultsAsTheCore)
     cfg_names.insert(d->name);
 
   // Names first: a parameter that the .cfg lacks or the core does not know is named before anything else.
-  std::set<std::string> core_names = {"likelihood_form", "deviation_space", "prototype_priors"};
+  std::set<std::string> core_names = {"likelihood_form", "deviation_space", "ray_correspondence", "prototype_priors"};
   for (const amcr::ParameterInfo& info : amcr::parameterTable())
     core_names.insert(info.name);
   for (const std::string& name : core_names)
@@ -169,6 +169,7 @@ TEST(ReconfigureTable, RoundTrip)
   p.sigma_w = 7.5;
   p.likelihood_form = amcr::LikelihoodForm::kMixture;
   p.deviation_space = amcr::DeviationSpace::kPrototype;
+  p.ray_correspondence = amcr::RayCorrespondence::kPaper;
   p.seed = 42;
   p.optical_flow = false;
   p.frame_budget_ms = 12.5;
@@ -178,6 +179,7 @@ TEST(ReconfigureTable, RoundTrip)
     EXPECT_DOUBLE_EQ(amcr::getParameter(back, info.name), amcr::getParameter(p, info.name)) << info.name;
   EXPECT_EQ(back.likelihood_form, p.likelihood_form);
   EXPECT_EQ(back.deviation_space, p.deviation_space);
+  EXPECT_EQ(back.ray_correspondence, p.ray_correspondence);
   EXPECT_EQ(back.prototype_priors, p.prototype_priors);
   EXPECT_TRUE(amcr_ros::tablesDiffer(p, [&] {
     amcr::Params q = p;
