@@ -252,7 +252,10 @@ def real_camera_table(metrics):
                                  ("corner error of the target's best report, median (px)", "corner_error_median",
                                   "px"),
                                  ("time per frame, mean (ms)", "time_mean_ms", "ms")):
-            lines.append("| %s | %s |" % (title, " | ".join(fmt(metrics[m][name][key], kind) for m in methods)))
+            values = [metrics[m][name][key] for m in methods]
+            if key == "first_report":  # never reported
+                values = [math.inf if v is None else v for v in values]
+            lines.append("| %s | %s |" % (title, " | ".join(fmt(v, kind) for v in values)))
         lines.append("")
     return "\n".join(lines)
 
