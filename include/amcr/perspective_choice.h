@@ -32,7 +32,7 @@ struct PerspectiveFit
   Homography homography;        ///< the fitted homography; the affine's lift when not tried
   Homography table_to_image;    ///< the answer: `homography` when used, else the affine's lift
   double affine_support = 0.0;      ///< outline support of the affine at rule.tolerance
-  double homography_support = 0.0;  ///< the same of the homography (0 when not tried)
+  double homography_support = 0.0;  ///< the same of the homography (0 unless its residual and conditioning passed)
   double affine_residual = 0.0;     ///< outlineResidual of the affine, px
   double homography_residual = 0.0; ///< the same of the homography (0 when not tried)
   double support = 0.0;         ///< outline support of the answer
