@@ -18,6 +18,7 @@ struct PerspectiveRule
   double min_affine_residual = 0.4;   ///< px: an affine this close to its edges is kept untried
   double residual_ratio = 0.7;     ///< the homography's residual must be at most this share of the affine's
   double min_residual_gain = 0.25; ///< px: and at least this much lower
+  double max_residual = 0.6;       ///< px: and at most this: the homography must explain the outline
   double max_depth_ratio = 2.0;    ///< bound of the perspective terms: far / near depth over the outline's box
   double max_corner_shift = 0.2;   ///< the box's corners move at most this share of its mapped diagonal from the affine's
   double max_scale = 8.0;          ///< local scale bound (params.max_affine_scale)
@@ -42,8 +43,9 @@ struct PerspectiveFit
 /// `iterations` passes and `search` px) and uses it only when the outline
 /// demands it, all of:
 /// - the affine's residual is above rule.min_affine_residual (else it is not tried);
-/// - the homography's residual is at most rule.residual_ratio of the affine's
-///   and at least rule.min_residual_gain px below it;
+/// - the homography's residual is at most rule.residual_ratio of the affine's,
+///   at least rule.min_residual_gain px below it, and at most rule.max_residual
+///   (a homography bent onto clutter or onto another shape does not get there);
 /// - its outline support is not below the affine's;
 /// - it is well-conditioned over the outline's bounding box
 ///   (homographyWellConditioned with rule.max_scale, rule.max_depth_ratio) and

@@ -16,15 +16,32 @@ constexpr double kMinSearch = 1.5;  // px
 // kMinFitPoints (twice the 4 a homography needs) and a kFitPointsDivisor-th of the outline.
 constexpr std::size_t kMinFitPoints = 8;
 constexpr std::size_t kFitPointsDivisor = 4;
+// The passes stop once one moves no corner of the outline's box by kConverged
+// px, after at least kMinPasses passes.
+constexpr double kConverged = 0.05;
+constexpr int kMinPasses = 3;
 // Points that the least-squares homography maps beyond kResidualFactor times
 // the median distance (and beyond kMinResidualLimit px) from their edge are
 // clutter and left out of the refit.
 constexpr double kResidualFactor = 2.5;
 constexpr double kMinResidualLimit = 1.0;  // px
 
+/// The largest distance between the points mapped by `a` and by `b`.
+double largestMove(const Homography& a, const Homography& b, const std::vector<cv::Point2d>& points)
+{
+  double largest = 0.0;
+  for (const cv::Point2d& p : points)
+  {
+    const cv::Point2d d = applyHomography(a, p) - applyHomography(b, p);
+    largest = std::max(largest, std::isfinite(d.x) && std::isfinite(d.y) ? std::hypot(d.x, d.y) : HUGE_VAL);
+  }
+  return largest;
+}
+
 /// A least-squares homography (cv::findHomography, method 0: a linear
 /// solution refined by Levenberg-Marquardt) of all pairs, refitted to the
-/// pairs it maps within the residual limit. False when either fit fails.
+/// pairs it maps within the residual limit (when it leaves any out). False
+/// when a fit fails.
 bool fitDroppingOutliers(const std::vector<cv::Point2f>& from, const std::vector<cv::Point2f>& to, Homography& out)
 {
   Homography first;
@@ -47,6 +64,11 @@ bool fitDroppingOutliers(const std::vector<cv::Point2f>& from, const std::vector
       kept_from.push_back(from[i]);
       kept_to.push_back(to[i]);
     }
+  if (kept_from.size() == from.size())
+  {
+    out = first;  // nothing to drop
+    return true;
+  }
   if (kept_from.size() < kMinFitPoints)
     return false;
   const cv::Mat refit = cv::findHomography(kept_from, kept_to, 0);
@@ -130,6 +152,7 @@ Homography refineHomographyOnEdges(const Prototype& prototype, const RadialScann
   if (iterations <= 0)
     return current;
   const int sign = dominantPolarity(scanner, mapOutline(prototype, current), search);
+  const std::vector<cv::Point2d> box = outlineBox(prototype);
   for (int pass = 0; pass < iterations; ++pass)
   {
     // Coarse to fine: the search shrinks to a third over the passes (slowly:
@@ -154,7 +177,10 @@ Homography refineHomographyOnEdges(const Prototype& prototype, const RadialScann
     Homography next;
     if (!fitDroppingOutliers(from, to, next))
       break;
+    const double moved = largestMove(current, next, box);
     current = next;
+    if (pass >= kMinPasses && moved < kConverged)
+      break;
   }
   return current;
 }

@@ -22,7 +22,7 @@ constexpr double kTrackDistance = 40.0;            // px an object's centre may 
 constexpr double kVerificationGain = 4.0;          // log-weight per unit of outline score above 0.5 (V-resampling)
 constexpr double kSameObjectOverlap = 0.5;         // outlines overlapping more are one object: the better is kept
 constexpr double kLeadingScoreRatio = 0.5;         // a leading hypothesis scores at least this share of the threshold
-constexpr double kPerspectiveScoreRatio = 0.5;     // a homography is tried from this share of the threshold on
+constexpr std::size_t kMaxPerspectiveFits = 3;     // best candidates per frame that may get a homography
 
 /// An object verified on the image, with the V-particles that support it.
 struct Candidate
@@ -107,7 +107,8 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
 /// demands it (perspective_choice.h); the candidate is left as it is otherwise.
 void fitPerspective(const ExtractionInput& in, Candidate& candidate)
 {
-  if (!in.params.fit_homography || candidate.object.score < kPerspectiveScoreRatio * in.params.decision_threshold)
+  // Only an object that could be reported (as a tracked one) is worth it.
+  if (!in.params.fit_homography || candidate.object.score < kKeepTrackRatio * in.params.decision_threshold)
     return;
   const int prototype = candidate.object.prototype_id;
   PerspectiveRule rule;
@@ -181,13 +182,16 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
         found = true;
       }
     }
-    if (!found)
-      continue;
-    fitPerspective(in, best);
-    candidates.push_back(std::move(best));
+    if (found)
+      candidates.push_back(std::move(best));
   }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.object.score > b.object.score; });
+  const auto byScore = [](const Candidate& a, const Candidate& b) { return a.object.score > b.object.score; };
+  std::stable_sort(candidates.begin(), candidates.end(), byScore);
+  // The homography, for the best few that could be reported (its fit costs
+  // about as much as the rest of the extraction).
+  for (std::size_t i = 0; i < candidates.size() && i < kMaxPerspectiveFits; ++i)
+    fitPerspective(in, candidates[i]);
+  std::stable_sort(candidates.begin(), candidates.end(), byScore);
   return candidates;
 }
 

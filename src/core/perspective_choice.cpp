@@ -45,7 +45,8 @@ PerspectiveFit choosePerspective(const Prototype& prototype, const RadialScanner
   fit.homography = refineHomographyOnEdges(prototype, scanner, lifted, rule.pass_factor * iterations, search);
   fit.homography_residual = outlineResidual(prototype, scanner, fit.homography, rule.residual_cap);
   if (fit.homography_residual > rule.residual_ratio * fit.affine_residual ||
-      fit.homography_residual > fit.affine_residual - rule.min_residual_gain)
+      fit.homography_residual > fit.affine_residual - rule.min_residual_gain ||
+      fit.homography_residual > rule.max_residual)
     return fit;
   const std::vector<cv::Point2d> box = outlineBox(prototype);
   if (!homographyWellConditioned(fit.homography, box, rule.max_scale, rule.max_depth_ratio) ||
