@@ -110,6 +110,11 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   object.support = 17;
   object.image_to_prototype = amcr::Affine(0.5, 0, -10, 0, 0.5, std::nan(""));
   object.prototype_to_image = amcr::Affine(2, 0, 20, 0, 2, -0.0);
+  // A perspective view: the small perspective terms keep their digits.
+  object.homography = amcr::Homography(2, 0.1, 20, 0, 2, -3, 0.000123456789, -0.0000012, 1);
+  object.homography_valid = true;
+  object.anisotropy = 2.000049;
+  object.viewing_angle_deg = 60.004;
   object.correspondences.push_back({cv::Point2d(10.126, 20.5), cv::Point2d(1, 2)});
   object.correspondences.push_back({cv::Point2d(30, 40), cv::Point2d(5.555, -6)});
   result.objects.push_back(object);
@@ -121,6 +126,9 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
             "\"track_id\": 4, \"score\": 0.9300, \"support\": 17, "
             "\"image_to_prototype\": [[0.500000, 0.000000, -10.000000], [0.000000, 0.500000, null]], "
             "\"prototype_to_image\": [[2.000000, 0.000000, 20.000000], [0.000000, 2.000000, 0.000000]], "
+            "\"homography\": [[2.0000000000, 0.1000000000, 20.0000000000], [0.0000000000, 2.0000000000, -3.0000000000], "
+            "[0.0001234568, -0.0000012000, 1.0000000000]], \"homography_valid\": true, "
+            "\"anisotropy\": 2.0000, \"viewing_angle_deg\": 60.00, "
             "\"correspondences\": [[10.13, 20.50, 1.00, 2.00], [30.00, 40.00, 5.55, -6.00]]}]}");
   Json value;
   std::string error;
@@ -129,6 +137,12 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   ASSERT_TRUE(objects && objects->isArray());
   ASSERT_EQ(objects->array.size(), 1u);
   EXPECT_EQ(objects->array[0].get("label")->string, "bird \"1\"");
+  const Json* valid = objects->array[0].get("homography_valid");
+  ASSERT_TRUE(valid && valid->type == Json::Type::kBool);
+  EXPECT_TRUE(valid->boolean);
+  const Json* h = objects->array[0].get("homography");
+  ASSERT_TRUE(h && h->isArray() && h->array.size() == 3u);
+  EXPECT_NEAR(h->array[2].array[0].number, 0.000123456789, 1e-10);
 }
 
 TEST(JsonOutput, EmptyAndSkippedFrames)

@@ -149,7 +149,8 @@ void expectOneErrorLine(const RunResult& run, int exit_code, const std::string& 
 void checkObject(const Json& object, const std::string& line)
 {
   for (const char* key :
-       {"label", "track_id", "score", "support", "image_to_prototype", "prototype_to_image", "correspondences"})
+       {"label", "track_id", "score", "support", "image_to_prototype", "prototype_to_image", "homography",
+        "homography_valid", "anisotropy", "viewing_angle_deg", "correspondences"})
     EXPECT_TRUE(object.get(key) != nullptr) << key << " missing in " << line;
   const Json* label = object.get("label");
   EXPECT_TRUE(label && label->isString()) << line;
@@ -166,6 +167,33 @@ void checkObject(const Json& object, const std::string& line)
         EXPECT_TRUE(v.isNumber()) << key << " in " << line;
     }
   }
+  const Json* h = object.get("homography");
+  ASSERT_TRUE(h && h->isArray() && h->array.size() == 3u) << line;
+  for (const Json& row : h->array)
+  {
+    ASSERT_TRUE(row.isArray() && row.array.size() == 3u) << line;
+    for (const Json& v : row.array)
+      EXPECT_TRUE(v.isNumber()) << line;
+  }
+  const Json* valid = object.get("homography_valid");
+  ASSERT_TRUE(valid && valid->type == Json::Type::kBool) << line;
+  if (!valid->boolean)
+  {
+    // Not used: the homography is the affine's lift.
+    const Json* a = object.get("prototype_to_image");
+    for (int r = 0; r < 2; ++r)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(h->array[r].array[c].number, a->array[r].array[c].number, 1e-6) << line;
+    EXPECT_EQ(h->array[2].array[0].number, 0.0) << line;
+    EXPECT_EQ(h->array[2].array[1].number, 0.0) << line;
+  }
+  EXPECT_EQ(h->array[2].array[2].number, 1.0) << line;
+  const Json* anisotropy = object.get("anisotropy");
+  const Json* angle = object.get("viewing_angle_deg");
+  ASSERT_TRUE(anisotropy && anisotropy->isNumber() && angle && angle->isNumber()) << line;
+  EXPECT_GE(anisotropy->number, 1.0) << line;
+  // viewing_angle_deg = acos(1 / anisotropy), up to the rounding of both.
+  EXPECT_NEAR(std::cos(angle->number * M_PI / 180.0), 1.0 / anisotropy->number, 2e-4) << line;
   const Json* correspondences = object.get("correspondences");
   ASSERT_TRUE(correspondences && correspondences->isArray()) << line;
   for (const Json& c : correspondences->array)

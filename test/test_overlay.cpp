@@ -148,6 +148,28 @@ TEST(DrawOverlay, DrawsRecognizedObjectsEvenWithOddValues)
   EXPECT_NE(on_outline, bgr.at<cv::Vec3b>(70, 105));
 }
 
+// The label shows the viewing angle and the anisotropy (issue 13), and says when the homography is used.
+TEST(DrawOverlay, LabelShowsTheViewingAngleAndAnisotropy)
+{
+  amcr::RecognizedObject object;
+  object.label = "target";
+  object.track_id = 2;
+  object.score = 0.87;
+  object.support = 9;
+  object.anisotropy = 2.0;
+  object.viewing_angle_deg = 60.0;
+  std::vector<std::string> lines = amcr::objectLabel(object);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0], "target #2 0.87 (9)");
+  EXPECT_EQ(lines[1], "view 60deg 2.00:1");
+  object.homography_valid = true;
+  object.anisotropy = 3.0;
+  object.viewing_angle_deg = 70.53;
+  lines = amcr::objectLabel(object);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[1], "view 71deg 3.00:1 persp");
+}
+
 TEST(DrawOverlay, RefusesEmptyAndUnsupportedImages)
 {
   const amcr::Params params = smallParams();

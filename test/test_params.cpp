@@ -53,6 +53,7 @@ TEST(Params, DefaultsAreValid)
   EXPECT_DOUBLE_EQ(p.p_outlier, 0.1);
   EXPECT_DOUBLE_EQ(p.p_invalid, 0.1);
   EXPECT_TRUE(p.optical_flow);
+  EXPECT_TRUE(p.fit_homography);
   EXPECT_TRUE(p.prototype_priors.empty());
 }
 

@@ -8,6 +8,9 @@
 // video; the nodelet publishes them.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "amcr/filter_view.h"
@@ -72,6 +75,11 @@ cv::Mat drawOverlay(const cv::Mat& input, const PrototypeMemory& memory, const F
 /// The same with the recognizer's memory and view.
 cv::Mat drawOverlay(const cv::Mat& input, const Recognizer& recognizer, const RecognitionResult& result,
                     const OverlayOptions& options = OverlayOptions());
+
+/// The label the overlay draws above an object, one string per line:
+/// "label #track score (support)", then "view <viewing angle>deg
+/// <anisotropy>:1", with " persp" when the homography is used.
+std::vector<std::string> objectLabel(const RecognizedObject& object);
 
 /// The colour of prototype `index` (BGR), as used in the overlay.
 cv::Scalar prototypeColour(int index);

@@ -79,6 +79,7 @@ struct Params
   int min_support = 3;                ///< V-particles an object needs [1, 5000]
   int refine_iterations = 5;          ///< outline-to-edge refinement passes of the affine [0, 100]
   double refine_search = 6.0;         ///< search along the outline normal for an edge, input px [0, 100]
+  bool fit_homography = true;         ///< after the affine, fit a homography and use it when the outline demands it
   double decision_threshold = 0.75;   ///< smallest score reported [0, 1]
   double min_object_size = 64.0;      ///< smallest object reported: longer side of its outline's box, input px [0, 4000]
 

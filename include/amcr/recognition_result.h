@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 
 #include "amcr/affine.h"
+#include "amcr/homography.h"
 
 namespace amcr
 {
@@ -22,14 +23,32 @@ struct RecognizedObject
   std::string label;
   int prototype_id = -1;  ///< index into the memory
   int track_id = 0;       ///< stable while the object stays recognized, never reused in a run
-  /// Share of the prototype's outline found on image edges after the affine
-  /// fit, in [0, 1].
+  /// Share of the prototype's outline found on image edges after the fit
+  /// (the homography's when homography_valid, else the affine's), in [0, 1].
   double score = 0.0;
   int support = 0;  ///< V-particles that agree on this object
   Affine image_to_prototype;  ///< input px -> original prototype px
   Affine prototype_to_image;  ///< original prototype px -> input px
+  /// Original prototype px -> input px, a perspective view (8 degrees of
+  /// freedom), h22 = 1. When homography_valid is false it is the lift of
+  /// prototype_to_image (rows of the affine, then 0 0 1), so it can always be used.
+  Homography homography = liftAffine(identityAffine());
+  /// True when the outline demanded the homography (perspective_choice.h) and
+  /// it was used: outline, correspondences and score then follow it.
+  bool homography_valid = false;
+  /// Ratio of the larger to the smaller singular value of the linear part of
+  /// prototype_to_image, >= 1 (1: not squashed).
+  double anisotropy = 1.0;
+  /// Angle between the target's normal and the viewing direction that the
+  /// anisotropy implies for a planar target under weak perspective,
+  /// acos(1 / anisotropy), degrees in [0, 90].
+  double viewing_angle_deg = 0.0;
+  /// Pairs whose prototype point the fitted transform maps within
+  /// group_tolerance of the image point.
   std::vector<Correspondence> correspondences;
-  std::vector<cv::Point2d> outline;  ///< the prototype's outline mapped into the input, px
+  /// The prototype's outline mapped into the input (by the homography when
+  /// homography_valid, else the affine), px.
+  std::vector<cv::Point2d> outline;
 };
 
 /// The result of one Recognizer::step. Consumers take it as it is: the

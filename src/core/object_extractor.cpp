@@ -7,6 +7,8 @@
 #include <cmath>
 
 #include "amcr/outline_fit.h"
+#include "amcr/perspective_choice.h"
+#include "amcr/viewing_angle.h"
 
 namespace amcr
 {
@@ -20,12 +22,14 @@ constexpr double kTrackDistance = 40.0;            // px an object's centre may 
 constexpr double kVerificationGain = 4.0;          // log-weight per unit of outline score above 0.5 (V-resampling)
 constexpr double kSameObjectOverlap = 0.5;         // outlines overlapping more are one object: the better is kept
 constexpr double kLeadingScoreRatio = 0.5;         // a leading hypothesis scores at least this share of the threshold
+constexpr std::size_t kMaxPerspectiveFits = 3;     // best candidates per frame that may get a homography
 
 /// An object verified on the image, with the V-particles that support it.
 struct Candidate
 {
   RecognizedObject object;
   std::vector<int> v_particles;  // V indices, one per correspondence
+  Affine table_to_image;         // the fitted affine, table px -> input px
 };
 
 /// Where the fit of one prototype starts: a group's affine and the affines
@@ -48,8 +52,10 @@ struct ExtractionInput
 
 /// A candidate for a prototype at a table -> image affine (score, support,
 /// correspondences, outline); false when the affine is out of bounds or the
-/// object too small.
-bool describeObject(const ExtractionInput& in, int prototype, const Affine& table_to_image, Candidate& candidate)
+/// object too small. With a `perspective` whose homography is used, the
+/// outline, the score and the correspondences follow the homography.
+bool describeObject(const ExtractionInput& in, int prototype, const Affine& table_to_image, Candidate& candidate,
+                    const PerspectiveFit* perspective = nullptr)
 {
   const Prototype& p = in.memory[prototype];
   double smallest = 0, largest = 0;
@@ -58,33 +64,62 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   if (largest > in.params.max_affine_scale || smallest < 1.0 / in.params.max_affine_scale ||
       !invertAffine(table_to_image, image_to_table))
     return false;
+  const bool use_homography = perspective != nullptr && perspective->used;
+  const auto toImage = [&](const cv::Point2d& q) {
+    return use_homography ? applyHomography(perspective->table_to_image, q) : applyAffine(table_to_image, q);
+  };
   candidate = Candidate();
+  candidate.table_to_image = table_to_image;
   RecognizedObject& object = candidate.object;
   object.label = p.label();
   object.prototype_id = prototype;
   for (const auto& o : p.outline())
-    object.outline.push_back(applyAffine(table_to_image, cv::Point2d(o.position)));
+    object.outline.push_back(toImage(cv::Point2d(o.position)));
   // Too small to tell shapes apart: neither reported nor fed back to attention.
   if (outlineSize(object.outline) < in.params.min_object_size)
     return false;
-  object.score = outlineSupport(p, in.scanner, table_to_image, kVerifyTolerance);
+  object.score = use_homography ? perspective->support : outlineSupport(p, in.scanner, table_to_image, kVerifyTolerance);
   object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
   object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
-  // Support: the converged V-particles whose cluster this affine explains.
+  object.homography_valid = use_homography;
+  object.homography = use_homography ? composeHomography(liftAffine(p.originalToTable()), perspective->table_to_image)
+                                     : liftAffine(object.prototype_to_image);
+  object.anisotropy = affineAnisotropy(object.prototype_to_image);
+  object.viewing_angle_deg = viewingAngleDegrees(object.anisotropy);
+  // Support: the converged V-particles whose cluster this transform explains.
   const std::vector<VParticle>& v = in.filter.vParticles();
   for (const VParticleCluster& c : in.clusters)
   {
     if (c.prototype != prototype || !isConverged(c, in.params.cluster_min_share))
       continue;
     const cv::Point2d image_point(v[c.v].x, v[c.v].y);
-    const cv::Point2d predicted = applyAffine(table_to_image, cv::Point2d(c.mean));
-    if (std::hypot(predicted.x - image_point.x, predicted.y - image_point.y) > in.params.group_tolerance)
+    const cv::Point2d predicted = toImage(cv::Point2d(c.mean));
+    if (!(std::hypot(predicted.x - image_point.x, predicted.y - image_point.y) <= in.params.group_tolerance))
       continue;
     object.correspondences.push_back({image_point, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean))});
     candidate.v_particles.push_back(c.v);
   }
   object.support = static_cast<int>(object.correspondences.size());
   return true;
+}
+
+/// The fit of the candidate's outline by a homography, when the outline
+/// demands it (perspective_choice.h); the candidate is left as it is otherwise.
+void fitPerspective(const ExtractionInput& in, Candidate& candidate)
+{
+  // Only an object that could be reported (as a tracked one) is worth it.
+  if (!in.params.fit_homography || candidate.object.score < kKeepTrackRatio * in.params.decision_threshold)
+    return;
+  const int prototype = candidate.object.prototype_id;
+  PerspectiveRule rule;
+  rule.tolerance = kVerifyTolerance;
+  rule.max_scale = in.params.max_affine_scale;
+  const PerspectiveFit fit = choosePerspective(in.memory[prototype], in.scanner, candidate.table_to_image,
+                                               candidate.object.score, in.params.refine_iterations,
+                                               in.params.refine_search, rule);
+  Candidate perspective;
+  if (fit.used && describeObject(in, prototype, candidate.table_to_image, perspective, &fit))
+    candidate = std::move(perspective);
 }
 
 // Starting points of the fit: each group's affine, and each object of the
@@ -150,8 +185,13 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
     if (found)
       candidates.push_back(std::move(best));
   }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.object.score > b.object.score; });
+  const auto byScore = [](const Candidate& a, const Candidate& b) { return a.object.score > b.object.score; };
+  std::stable_sort(candidates.begin(), candidates.end(), byScore);
+  // The homography, for the best few that could be reported (its fit costs
+  // about as much as the rest of the extraction).
+  for (std::size_t i = 0; i < candidates.size() && i < kMaxPerspectiveFits; ++i)
+    fitPerspective(in, candidates[i]);
+  std::stable_sort(candidates.begin(), candidates.end(), byScore);
   return candidates;
 }
 
@@ -174,7 +214,9 @@ std::vector<EvidenceBonus> verificationEvidence(const ExtractionInput& in, const
       if (object.prototype_id != c.prototype || object.score <= best)
         continue;
       const Prototype& p = in.memory[c.prototype];
-      const cv::Point2d predicted = applyAffine(object.prototype_to_image, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean)));
+      const cv::Point2d prototype_point = applyAffine(p.tableToOriginal(), cv::Point2d(c.mean));
+      const cv::Point2d predicted = object.homography_valid ? applyHomography(object.homography, prototype_point)
+                                                            : applyAffine(object.prototype_to_image, prototype_point);
       if (std::hypot(predicted.x - v[c.v].x, predicted.y - v[c.v].y) <= in.params.group_tolerance)
         best = object.score;
     }

@@ -139,6 +139,16 @@ void drawPanel(cv::Mat& canvas, const PanelMap& map, const Prototype& prototype,
 
 cv::Scalar prototypeColour(int index) { return hueColour(index, 230); }
 
+std::vector<std::string> objectLabel(const RecognizedObject& object)
+{
+  std::string view = "view " + format("%.0f", object.viewing_angle_deg) + "deg " + format("%.2f:1", object.anisotropy);
+  if (object.homography_valid)
+    view += " persp";
+  return {object.label + " #" + std::to_string(object.track_id) + " " + format("%.2f", object.score) + " (" +
+              std::to_string(object.support) + ")",
+          view};
+}
+
 cv::Scalar vParticleColour(int index) { return hueColour(index + 0.5, 255); }
 
 cv::Rect OverlayLayout::cellRect(int index) const
@@ -230,15 +240,17 @@ void drawObject(cv::Mat& canvas, cv::Mat& image, const std::vector<PanelMap>& pa
     }
   }
 
-  std::string text = object.label + " #" + std::to_string(object.track_id) + " " + format("%.2f", object.score) +
-                     " (" + std::to_string(object.support) + ")";
+  const std::vector<std::string> lines = objectLabel(object);
+  // The lines stacked above the outline's box, the last just above it.
+  constexpr int kLineHeight = 16;
   cv::Point anchor(0, 0);
   if (!outline.empty())
   {
     const cv::Rect box = cv::boundingRect(outline);
-    anchor = cv::Point(box.x, box.y - 18);
+    anchor = cv::Point(box.x, box.y - 2 - kLineHeight * static_cast<int>(lines.size()));
   }
-  drawText(image, text, anchor, colour);
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    drawText(image, lines[i], anchor + cv::Point(0, kLineHeight * static_cast<int>(i)), colour);
 }
 
 /// V-particles on top: circle in the dominant prototype's colour, heading

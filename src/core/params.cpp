@@ -67,6 +67,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_INT(min_support, "V-particles", 1, 5000, "V-particles an object needs"),
       AMCR_INT(refine_iterations, "", 0, 100, "outline-to-edge refinement passes of the affine"),
       AMCR_DOUBLE(refine_search, "px", 0, 100, "search along the outline normal for an edge"),
+      AMCR_INT(fit_homography, "", 0, 1, "1: a homography is fitted after the affine and used when the outline demands it"),
       AMCR_DOUBLE(decision_threshold, "", 0, 1, "smallest score reported"),
       AMCR_DOUBLE(min_object_size, "px", 0, 4000, "smallest object reported: longer side of the smallest rectangle around its outline"),
       AMCR_INT(optical_flow, "", 0, 1, "1: V-particles ride the pyramidal Lucas-Kanade flow between frames"),

@@ -66,6 +66,23 @@ void appendAffine(std::string& out, const Affine& a)
   out += "]]";
 }
 
+void appendHomography(std::string& out, const Homography& h)
+{
+  out += "[[";
+  for (int row = 0; row < 3; ++row)
+  {
+    if (row > 0)
+      out += "], [";
+    for (int col = 0; col < 3; ++col)
+    {
+      if (col > 0)
+        out += ", ";
+      out += jsonNumber(h(row, col), kHomographyDecimals);
+    }
+  }
+  out += "]]";
+}
+
 void appendObject(std::string& out, const RecognizedObject& object)
 {
   out += "{\"label\": " + jsonString(object.label);
@@ -76,6 +93,11 @@ void appendObject(std::string& out, const RecognizedObject& object)
   appendAffine(out, object.image_to_prototype);
   out += ", \"prototype_to_image\": ";
   appendAffine(out, object.prototype_to_image);
+  out += ", \"homography\": ";
+  appendHomography(out, object.homography);
+  out += std::string(", \"homography_valid\": ") + (object.homography_valid ? "true" : "false");
+  out += ", \"anisotropy\": " + jsonNumber(object.anisotropy, kAnisotropyDecimals);
+  out += ", \"viewing_angle_deg\": " + jsonNumber(object.viewing_angle_deg, kAngleDecimals);
   out += ", \"correspondences\": [";
   for (std::size_t i = 0; i < object.correspondences.size(); ++i)
   {

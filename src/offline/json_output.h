@@ -3,6 +3,8 @@
 //   {"frame": 0, "time_ms": 3.100, "iteration": 1, "objects": [{"label": "bird-1",
 //    "track_id": 1, "score": 0.9300, "support": 17,
 //    "image_to_prototype": [[a, b, c], [d, e, f]], "prototype_to_image": [[a, b, c], [d, e, f]],
+//    "homography": [[a, b, c], [d, e, f], [g, h, 1]], "homography_valid": false,
+//    "anisotropy": 1.0000, "viewing_angle_deg": 0.00,
 //    "correspondences": [[xi, yi, xp, yp], ...]}]}
 // Other tools read these names: keep them.
 #pragma once
@@ -20,6 +22,11 @@ namespace offline
 constexpr int kTimeDecimals = 3;    ///< time_ms
 constexpr int kScoreDecimals = 4;   ///< score in [0, 1]
 constexpr int kAffineDecimals = 6;  ///< affine matrix entries
+/// Homography entries: its perspective terms are about 1e-4 / px, and w
+/// must stay exact to 1e-6 over a few thousand px.
+constexpr int kHomographyDecimals = 10;
+constexpr int kAnisotropyDecimals = 4;  ///< anisotropy, >= 1
+constexpr int kAngleDecimals = 2;       ///< viewing_angle_deg, degrees
 constexpr int kPixelDecimals = 2;   ///< correspondence coordinates, px
 constexpr int kShareDecimals = 3;   ///< iterations (share of an iteration run on a frame)
 

@@ -12,6 +12,12 @@ void toArray(const amcr::Affine& a, boost::array<double, 6>& out)
     for (int c = 0; c < 3; ++c)
       out[static_cast<std::size_t>(r * 3 + c)] = a(r, c);
 }
+void toArray(const amcr::Homography& h, boost::array<double, 9>& out)
+{
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      out[static_cast<std::size_t>(r * 3 + c)] = h(r, c);
+}
 }  // namespace
 
 amcr::Recognition toMsg(const amcr::RecognizedObject& object)
@@ -24,6 +30,10 @@ amcr::Recognition toMsg(const amcr::RecognizedObject& object)
   msg.support = object.support;
   toArray(object.image_to_prototype, msg.image_to_prototype);
   toArray(object.prototype_to_image, msg.prototype_to_image);
+  toArray(object.homography, msg.homography);
+  msg.homography_valid = object.homography_valid;
+  msg.anisotropy = object.anisotropy;
+  msg.viewing_angle_deg = object.viewing_angle_deg;
   msg.outline.points.reserve(object.outline.size());
   for (const cv::Point2d& p : object.outline)
   {

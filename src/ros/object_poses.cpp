@@ -98,7 +98,8 @@ void ObjectPoses::fill(const std::vector<amcr::RecognizedObject>& objects, const
     else if (core.prototype_id >= 0 && core.prototype_id < static_cast<int>(memory.size()))
     {
       const cv::Size size = memory[static_cast<std::size_t>(core.prototype_id)].originalSize();
-      object.pose_valid = planarPose(core.prototype_to_image, size.width, size.height, mpp, *info, object.pose, why);
+      // The homography: a perspective view's corners where they are (the affine's lift when not used).
+      object.pose_valid = planarPose(core.homography, size.width, size.height, mpp, *info, object.pose, why);
     }
     if (!object.pose_valid)
     {

@@ -27,6 +27,12 @@ std::string checkCameraInfo(const sensor_msgs::CameraInfo& info)
 bool planarPose(const amcr::Affine& a, int width, int height, double metres_per_pixel,
                 const sensor_msgs::CameraInfo& info, geometry_msgs::Pose& pose, std::string& why)
 {
+  return planarPose(amcr::liftAffine(a), width, height, metres_per_pixel, info, pose, why);
+}
+
+bool planarPose(const amcr::Homography& h, int width, int height, double metres_per_pixel,
+                const sensor_msgs::CameraInfo& info, geometry_msgs::Pose& pose, std::string& why)
+{
   try
   {
     if (!(metres_per_pixel > 0.0) || width < 2 || height < 2)
@@ -44,7 +50,12 @@ bool planarPose(const amcr::Affine& a, int width, int height, double metres_per_
     for (const cv::Point2d& c : corners)
     {
       object.emplace_back(c.x * metres_per_pixel, c.y * metres_per_pixel, 0.0);
-      image.emplace_back(a(0, 0) * c.x + a(0, 1) * c.y + a(0, 2), a(1, 0) * c.x + a(1, 1) * c.y + a(1, 2));
+      image.push_back(amcr::applyHomography(h, c));
+      if (!std::isfinite(image.back().x) || !std::isfinite(image.back().y))
+      {
+        why = "the homography maps a corner of the prototype beyond the horizon";
+        return false;
+      }
     }
     const cv::Matx33d k(info.K[0], info.K[1], info.K[2], info.K[3], info.K[4], info.K[5], info.K[6], info.K[7],
                         info.K[8]);

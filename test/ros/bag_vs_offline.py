@@ -125,6 +125,14 @@ class BagVsOffline(unittest.TestCase):
                     flat = [v for row in want[name] for v in row]
                     for a, b in zip(getattr(got, name), flat):
                         self.assertAlmostEqual(a, b, delta=AFFINE_TOL, msg="%s %s" % (where, name))
+                # The perspective fit and the view (issue 13).
+                self.assertEqual(got.homography_valid, want["homography_valid"], where)
+                flat = [v for row in want["homography"] for v in row]
+                self.assertEqual(len(got.homography), len(flat), where)
+                for a, b in zip(got.homography, flat):
+                    self.assertAlmostEqual(a, b, delta=AFFINE_TOL, msg="%s homography" % where)
+                self.assertAlmostEqual(got.anisotropy, want["anisotropy"], delta=1e-4, msg=where)
+                self.assertAlmostEqual(got.viewing_angle_deg, want["viewing_angle_deg"], delta=0.01, msg=where)
                 self.assertEqual(len(got.correspondences), len(want["correspondences"]), where)
                 for c, w in zip(got.correspondences, want["correspondences"]):
                     for a, b in zip((c.image_x, c.image_y, c.prototype_x, c.prototype_y), w):

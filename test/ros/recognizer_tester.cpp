@@ -22,6 +22,7 @@
 //   ~metres_per_pixel  the value the nodelet was given (default 0.001)
 //   ~translation_tolerance  of the pose and the tf frame, m (default 0.02)
 #include <algorithm>
+#include <cmath>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -388,6 +389,15 @@ TEST_F(RecognizerTest, RecognizesTheShownPrototype)
   EXPECT_GE(object.track_id, 1);
   EXPECT_FALSE(object.outline.points.empty());
   EXPECT_FALSE(object.correspondences.empty());
+  // The view (issue 13): anisotropy >= 1 and its viewing angle; the homography is the affine's lift when not used.
+  EXPECT_GE(object.anisotropy, 1.0);
+  EXPECT_NEAR(object.viewing_angle_deg, std::acos(1.0 / object.anisotropy) * 180.0 / M_PI, 1e-9);
+  EXPECT_EQ(object.homography[8], 1.0);
+  if (!object.homography_valid)
+  {
+    for (std::size_t i = 0; i < 6; ++i)
+      EXPECT_DOUBLE_EQ(object.homography[i], object.prototype_to_image[i]) << "homography entry " << i;
+  }
   if (!check_pose_)
   {
     EXPECT_FALSE(object.pose_valid) << "a pose without camera_info";

@@ -1,7 +1,9 @@
 // planarPose on exact inputs: a prototype on a plane parallel to the image at a
 // known depth, seen through a pinhole camera, is an exact similarity in the
 // image; the pose must come back whatever form D takes (empty, plumb_bob zeros).
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -55,5 +57,55 @@ TEST(PlanarPose, RefusesZerosInKAndNoMetricSize)
   EXPECT_NE(why.find("zeros in K"), std::string::npos) << why;
   EXPECT_FALSE(amcr_ros::planarPose(a, 200, 200, 0.0, camera(500, {}), pose, why));
   EXPECT_NE(why.find("metric size"), std::string::npos) << why;
+}
+
+// A plane tilted by 50 degrees about its x axis, 0.5 m away, seen through a
+// 500 px camera: an exact homography. Its pose comes back from the
+// homography's corners; the best affine over the same corners (what the
+// pose used before the homography) misses the tilt by about a degree.
+TEST(PlanarPose, TiltedPlaneFromItsHomography)
+{
+  const double focal = 500, mpp = 0.001, z = 0.5, tilt = 50.0 * M_PI / 180.0;
+  const int size = 200;
+  // Prototype px -> camera: X = mpp (x - 99.5), Y = mpp (y - 99.5) on the plane, rotated about x, at depth z.
+  const cv::Matx33d rotation(1, 0, 0, 0, std::cos(tilt), -std::sin(tilt), 0, std::sin(tilt), std::cos(tilt));
+  const cv::Matx33d to_plane(mpp, 0, -mpp * 99.5, 0, mpp, -mpp * 99.5, 0, 0, 1);
+  const cv::Matx33d extrinsic(rotation(0, 0), rotation(0, 1), 0, rotation(1, 0), rotation(1, 1), 0, rotation(2, 0),
+                              rotation(2, 1), z);
+  const cv::Matx33d k(focal, 0, 319.5, 0, focal, 239.5, 0, 0, 1);
+  amcr::Homography h = k * extrinsic * to_plane;
+  ASSERT_TRUE(amcr::normalizeHomography(h, h));
+  // The truth: the origin (prototype pixel (0, 0)) and the rotation's quaternion about x.
+  const cv::Vec3d origin = rotation * cv::Vec3d(-mpp * 99.5, -mpp * 99.5, 0) + cv::Vec3d(0, 0, z);
+
+  geometry_msgs::Pose pose;
+  std::string why;
+  ASSERT_TRUE(amcr_ros::planarPose(h, size, size, mpp, camera(focal, {}), pose, why)) << why;
+  EXPECT_NEAR(pose.position.x, origin[0], 1e-6);
+  EXPECT_NEAR(pose.position.y, origin[1], 1e-6);
+  EXPECT_NEAR(pose.position.z, origin[2], 1e-6);
+  EXPECT_NEAR(std::abs(pose.orientation.x), std::sin(tilt / 2), 1e-6);
+  EXPECT_NEAR(std::abs(pose.orientation.w), std::cos(tilt / 2), 1e-6);
+
+  // The least-squares affine of the four corners: its pose misses the tilt (by 1.1 degrees).
+  std::vector<cv::Point2d> corners = {{0, 0}, {size - 1.0, 0}, {size - 1.0, size - 1.0}, {0, size - 1.0}}, mapped;
+  for (const auto& c : corners)
+    mapped.push_back(amcr::applyHomography(h, c));
+  amcr::Affine affine;
+  ASSERT_TRUE(amcr::fitAffine(corners, mapped, affine));
+  geometry_msgs::Pose affine_pose;
+  ASSERT_TRUE(amcr_ros::planarPose(affine, size, size, mpp, camera(focal, {}), affine_pose, why)) << why;
+  const double affine_tilt = 2.0 * std::asin(std::min(1.0, std::abs(affine_pose.orientation.x)));
+  EXPECT_GT(std::abs(affine_tilt - tilt), 0.5 * M_PI / 180.0) << "the affine's pose is as good: the test shows nothing";
+}
+
+TEST(PlanarPose, RefusesACornerBeyondTheHorizon)
+{
+  geometry_msgs::Pose pose;
+  std::string why;
+  // w = 1 - 0.01 x is negative at x = 199.
+  EXPECT_FALSE(amcr_ros::planarPose(amcr::Homography(1, 0, 0, 0, 1, 0, -0.01, 0, 1), 200, 200, 0.001,
+                                    camera(500, {}), pose, why));
+  EXPECT_NE(why.find("horizon"), std::string::npos) << why;
 }
 }  // namespace

@@ -172,6 +172,7 @@ TEST(ReconfigureTable, RoundTrip)
   p.ray_correspondence = amcr::RayCorrespondence::kPaper;
   p.seed = 42;
   p.optical_flow = false;
+  p.fit_homography = false;
   p.frame_budget_ms = 12.5;
   p.prototype_priors = {{"bat", 2.0}, {"apple", 0.0}};
   const amcr::Params back = amcr_ros::fromConfig(amcr_ros::toConfig(p), amcr::Params());

@@ -1,0 +1,44 @@
+// The edge search along an outline's normals that the affine and the
+// homography fits on the image share (outline_fit.h, homography_fit.h): an
+// outline point mapped into the input, its normal there, and the nearest
+// edge of a given polarity along that normal.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "amcr/affine.h"
+#include "amcr/prototype.h"
+#include "amcr/radial_scan.h"
+
+namespace amcr
+{
+/// An outline point mapped into the image with its image-space unit normal.
+struct MappedPoint
+{
+  cv::Point2d table;   ///< the outline point, table px
+  cv::Point2d image;   ///< where the fitted transform puts it, input px
+  cv::Point2d normal;  ///< the outline's outward unit normal there, input px
+};
+
+/// The prototype's outline mapped by a table -> image affine (normals by the
+/// inverse transpose of its linear part); empty when the affine is singular.
+std::vector<MappedPoint> mapOutline(const Prototype& prototype, const Affine& table_to_image);
+
+/// The nearest edge of polarity `sign` (+1: grey rises outwards, -1: falls)
+/// within `search` px of `p` along its normal: the local maximum of the
+/// signed step I(t + 1) - I(t - 1), sampled every 0.5 px, closest to the point
+/// (the "moving edges" search of model-based trackers). `offset` is in px
+/// along the normal, a multiple of 0.5. False when there is none.
+bool nearestEdge(const RadialScanner& scanner, const MappedPoint& p, double search, int sign, double& offset);
+
+/// nearestEdge with the offset refined to a fraction of a sample by a
+/// parabola through the step and its two neighbours.
+bool nearestEdgeSubpixel(const RadialScanner& scanner, const MappedPoint& p, double search, int sign, double& offset);
+
+/// The polarity most outline points show: +1 when the grey level rises
+/// outwards (a dark print on light paper), -1 otherwise; a sample of the
+/// points is enough to tell.
+int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped, double search);
+}  // namespace amcr

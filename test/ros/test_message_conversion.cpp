@@ -1,0 +1,61 @@
+// toMsg of one recognized object (src/ros/message_conversion.cpp): every
+// field of amcr/Recognition as the core has it, the homography row-major and
+// the view (issue 13).
+#include <gtest/gtest.h>
+
+#include "message_conversion.h"
+
+namespace
+{
+TEST(MessageConversion, ObjectFieldsWithHomographyAndView)
+{
+  amcr::RecognizedObject object;
+  object.label = "target";
+  object.prototype_id = 1;
+  object.track_id = 5;
+  object.score = 0.91;
+  object.support = 7;
+  object.image_to_prototype = amcr::Affine(0.5, 0.1, -3, -0.1, 0.5, 4);
+  object.prototype_to_image = amcr::Affine(1.9, -0.4, 30, 0.4, 1.9, -8);
+  object.homography = amcr::Homography(1.9, -0.4, 30, 0.4, 1.9, -8, 0.0002, -0.0001, 1);
+  object.homography_valid = true;
+  object.anisotropy = 2.5;
+  object.viewing_angle_deg = 66.42;
+  object.outline = {{10, 20}, {30, 40}};
+  object.correspondences.push_back({cv::Point2d(11, 12), cv::Point2d(13, 14)});
+
+  const amcr::Recognition msg = amcr_ros::toMsg(object);
+  EXPECT_EQ(msg.label, "target");
+  EXPECT_EQ(msg.prototype_id, 1);
+  EXPECT_EQ(msg.track_id, 5);
+  EXPECT_DOUBLE_EQ(msg.score, 0.91);
+  EXPECT_EQ(msg.support, 7);
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_DOUBLE_EQ(msg.image_to_prototype[r * 3 + c], object.image_to_prototype(r, c));
+      EXPECT_DOUBLE_EQ(msg.prototype_to_image[r * 3 + c], object.prototype_to_image(r, c));
+    }
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_DOUBLE_EQ(msg.homography[r * 3 + c], object.homography(r, c)) << "row " << r << " column " << c;
+  EXPECT_TRUE(msg.homography_valid);
+  EXPECT_DOUBLE_EQ(msg.anisotropy, 2.5);
+  EXPECT_DOUBLE_EQ(msg.viewing_angle_deg, 66.42);
+  ASSERT_EQ(msg.outline.points.size(), 2u);
+  EXPECT_FLOAT_EQ(msg.outline.points[1].y, 40.f);
+  ASSERT_EQ(msg.correspondences.size(), 1u);
+  EXPECT_DOUBLE_EQ(msg.correspondences[0].prototype_y, 14.0);
+  EXPECT_FALSE(msg.pose_valid);
+  EXPECT_DOUBLE_EQ(msg.pose.orientation.w, 1.0);
+
+  // Not used: the flag says so, and the homography is whatever the core put there (the affine's lift).
+  object.homography_valid = false;
+  object.homography = amcr::liftAffine(object.prototype_to_image);
+  const amcr::Recognition plain = amcr_ros::toMsg(object);
+  EXPECT_FALSE(plain.homography_valid);
+  EXPECT_DOUBLE_EQ(plain.homography[6], 0.0);
+  EXPECT_DOUBLE_EQ(plain.homography[7], 0.0);
+  EXPECT_DOUBLE_EQ(plain.homography[8], 1.0);
+}
+}  // namespace
