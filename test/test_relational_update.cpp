@@ -220,6 +220,7 @@ std::vector<amcr::Params> sweptParams()
                                                          std::make_pair(150.0, 1.5)})
         {
           amcr::Params p;
+          p.ray_correspondence = amcr::RayCorrespondence::kPaper;  // the affine-corrected path: test_corrected_scan.cpp
           p.deviation_space = space;
           p.likelihood_form = form;
           p.sigma_w = sigma;

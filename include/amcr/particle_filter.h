@@ -114,8 +114,8 @@ private:
   void seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const VParticle& v);
   void seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v);
   /// ray_correspondence affine: gives M-particle `index` a view shape,
-  /// frontal or drawn (corrected_scan.h).
-  void drawShape(MParticleSet& set, std::size_t index);
+  /// frontal or drawn (corrected_scan.h); true when it is not frontal.
+  bool drawShape(MParticleSet& set, std::size_t index);
   /// Scans the V-particle's rays (refreshing v.rays) and updates its
   /// M-particles by eqs. 5-6 (particle_filter_measurement.cpp).
   void measure(int v_index, const RadialScanner& scanner);

@@ -59,7 +59,10 @@ void MotionModel::moveM(MParticleSet& m, std::size_t begin, std::size_t end, dou
     m.theta[i] = static_cast<float>(m.theta[i] + turn + rng.gaussian(noise_rotation_));
     m.x[i] = static_cast<float>(m.x[i] + u.translation * mapped_new_x + rng.gaussian(noise_translation_));
     m.y[i] = static_cast<float>(m.y[i] + u.translation * mapped_new_y + rng.gaussian(noise_translation_));
-    if (noise_shape_ > 0.0)
+    // A frontal shape stays frontal (the frontal hypotheses are kept apart
+    // from the oblique ones: particle_filter.cpp, drawShape).
+    if (noise_shape_ > 0.0 && !(m.shape[0][i] == kFrontalShape[0] && m.shape[1][i] == kFrontalShape[1] &&
+                                m.shape[2][i] == kFrontalShape[2]))
     {
       const float e1 = static_cast<float>(rng.gaussian(noise_shape_)), e2 = static_cast<float>(rng.gaussian(noise_shape_));
       float shape[3] = {m.shape[0][i], m.shape[1][i], m.shape[2][i]};

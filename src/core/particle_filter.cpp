@@ -144,12 +144,20 @@ void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, 
   int bin = -1;
   if (params_.ray_correspondence == RayCorrespondence::kAffine)
   {
-    drawShape(set, index);
-    const float shape[3] = {set.shape[0][index], set.shape[1][index], set.shape[2][index]};
-    bin = bestHeadingBin(p, at.x, at.y, v.rays, RayOffsets(shape, v.theta));
+    if (drawShape(set, index))
+    {
+      const float shape[3] = {set.shape[0][index], set.shape[1][index], set.shape[2][index]};
+      bin = bestHeadingBin(p, at.x, at.y, v.rays, RayOffsets(shape, v.theta));
+    }
+    else
+    {
+      bin = bestHeadingBin(p, at.x, at.y, v.rays);
+    }
   }
   else
   {
+    for (int k = 0; k < 3; ++k)
+      set.shape[k][index] = kFrontalShape[k];
     bin = bestHeadingBin(p, at.x, at.y, v.rays);
   }
   const double heading = bin >= 0 ? binToAngle(bin) : rng_.uniform(-M_PI, M_PI);
@@ -161,18 +169,21 @@ void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, 
   set.log_likelihood[index] = static_cast<float>(kFeatureRays * observation_.logInvalid());
 }
 
-// The view shape of a new M-particle: frontal for half of them (views are
-// often near frontal, and those must not lose their particles to the
-// search), else anisotropy log-uniform in [1, max_anisotropy] along a
-// uniform axis. The scale is left to the triangle fit.
-void ParticleFilter::drawShape(MParticleSet& set, std::size_t index)
+// The view shape of a new M-particle: frontal, or for oblique_share of
+// them anisotropy log-uniform in [1, max_anisotropy] along a uniform axis
+// (views are often near frontal, and those must not lose their particles to
+// the search). The scale is left to the triangle fit.
+bool ParticleFilter::drawShape(MParticleSet& set, std::size_t index)
 {
   float shape[3] = {kFrontalShape[0], kFrontalShape[1], kFrontalShape[2]};
-  if (params_.max_anisotropy > 1.0 && rng_.uniform() < 0.5)
+  const bool oblique =
+      params_.max_anisotropy > 1.0 && params_.oblique_share > 0.0 && rng_.uniform() < params_.oblique_share;
+  if (oblique)
     obliqueShape(static_cast<float>(std::exp(rng_.uniform(0.0, std::log(params_.max_anisotropy)))),
                  static_cast<float>(rng_.uniform(0.0, M_PI)), shape);
   for (int k = 0; k < 3; ++k)
     set.shape[k][index] = shape[k];
+  return oblique;
 }
 
 // ---------------------------------------------------------------------------

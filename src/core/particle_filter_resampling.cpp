@@ -74,12 +74,13 @@ void ParticleFilter::injectM(const VParticle& v, const LeadingHypothesis& h, std
   for (int e = 0; e < 6; ++e)
     m_scratch_.affine[e][index] = static_cast<float>(a(e / 3, e % 3));
   m_scratch_.affine_valid[index] = kFittedAffine;
-  float fitted[6], shape[3];
+  float fitted[6];
+  float shape[3] = {kFrontalShape[0], kFrontalShape[1], kFrontalShape[2]};
   for (int e = 0; e < 6; ++e)
     fitted[e] = m_scratch_.affine[e][index];
-  if (params_.ray_correspondence == RayCorrespondence::kAffine && viewShape(fitted, shape))
-    for (int k = 0; k < 3; ++k)
-      m_scratch_.shape[k][index] = shape[k];
+  viewShape(fitted, shape);  // leaves the frontal shape for a degenerate affine
+  for (int k = 0; k < 3; ++k)
+    m_scratch_.shape[k][index] = shape[k];
   m_scratch_.log_likelihood[index] = worst;
 }
 
