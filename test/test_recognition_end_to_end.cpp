@@ -163,6 +163,27 @@ INSTANTIATE_TEST_SUITE_P(
       return amcr_test::shapeName(info.param.shape) + "_" + std::to_string(info.param.clutter_seed);
     });
 
+// Oblique views (issue 13): anisotropy 2.5, i.e. the print seen 66 degrees
+// off its normal (scale sqrt(2.5) times s along one axis, s / sqrt(2.5)
+// across it, s = 0.85), rotated, over the same clutter; the same bounds.
+// Measured with recognizer seeds 1-4: arrow_201 found in 3 of 4 runs
+// (iterations 26-64), crescent_202 in 4 of 4 (7-31). Not here because it
+// fails: the star at anisotropy 2.5 (scene 203, 140 deg) was found in none
+// of 4 runs; its thin points, squashed, leave few rays that meet the same
+// edges in the image and in the table (README, "Oblique views").
+Target oblique(ShapeId shape, cv::Point2d centre, double rotation_deg, std::uint64_t clutter_seed)
+{
+  const double s = 0.85, stretch = std::sqrt(2.5);
+  return Target{shape, centre, rotation_deg * M_PI / 180, s * stretch, s / stretch, 0.0, clutter_seed};
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ObliqueViews, EndToEnd,
+    ::testing::Values(oblique(ShapeId::kArrow, {320, 240}, 25, 201), oblique(ShapeId::kCrescent, {310, 250}, -70, 202)),
+    [](const ::testing::TestParamInfo<Target>& info) {
+      return amcr_test::shapeName(info.param.shape) + "_" + std::to_string(info.param.clutter_seed);
+    });
+
 // min_object_size: the same arrow scene, recognized (right label, corners
 // within the tolerance) when any size is reported, gives no report at all
 // when the smallest reported size is larger than the arrow.
