@@ -154,6 +154,15 @@ void linearOf(const amcr::Affine& a, float l[4])
   l[3] = static_cast<float>(a(1, 1));
 }
 
+/// The view shape (corrected_scan.h) of the true image -> table affine.
+bool trueShape(const ViewedShape& s, float shape[3])
+{
+  float a[6];
+  for (int e = 0; e < 6; ++e)
+    a[e] = static_cast<float>(s.image_to_table(e / 3, e % 3));
+  return amcr::viewShape(a, shape);
+}
+
 double percentile(std::vector<double> values, double q)
 {
   if (values.empty())
@@ -229,11 +238,9 @@ TEST(CorrectedScan, TruePoseBeatsPosesTenPixelsOrTenDegreesOff)
   {
     const ViewedShape s = viewShape(view, params);
     const amcr::Prototype& p = (*s.memory)[0];
-    float l[4], a[6], shape[3];
+    float l[4], shape[3];
     linearOf(s.image_to_table, l);
-    for (int e = 0; e < 6; ++e)
-      a[e] = static_cast<float>(s.image_to_table(e / 3, e % 3));
-    ASSERT_TRUE(amcr::viewShape(a, shape));
+    ASSERT_TRUE(trueShape(s, shape)) << describe(view);
     int compared = 0, shifted_beaten = 0, turned_beaten = 0;
     double true_sum = 0.0, paper_sum = 0.0;
     for (const cv::Point& at : interiorTablePixels(s, 12.0, 40, rng))
@@ -287,11 +294,9 @@ TEST(CorrectedScan, ShapeAwareHeadingProposalFindsObliqueHeadings)
       continue;
     const ViewedShape s = viewShape(view, params);
     const amcr::Prototype& p = (*s.memory)[0];
-    float l[4], a[6], shape[3];
+    float l[4], shape[3];
     linearOf(s.image_to_table, l);
-    for (int e = 0; e < 6; ++e)
-      a[e] = static_cast<float>(s.image_to_table(e / 3, e % 3));
-    ASSERT_TRUE(amcr::viewShape(a, shape));
+    ASSERT_TRUE(trueShape(s, shape)) << describe(view);
     for (const cv::Point& at : interiorTablePixels(s, 6.0, 30, rng))
     {
       amcr::VParticle v;

@@ -8,7 +8,9 @@
 // and A is re-estimated from the triangle rays so corrected (a fixed point).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include <opencv2/core.hpp>
 
@@ -26,15 +28,61 @@ struct TableDirection
 };
 
 /// The table direction that the row-major 2x2 linear map `l` takes image
-/// direction (dx, dy) to. `l` must not be singular.
-TableDirection tableDirection(const float l[4], float dx, float dy);
+/// direction (dx, dy) to. `l` must not be singular. Inline: it runs for every
+/// ray of every relational particle.
+inline TableDirection tableDirection(const float l[4], float dx, float dy)
+{
+  TableDirection dir;
+  const float x = l[0] * dx + l[1] * dy;
+  const float y = l[2] * dx + l[3] * dy;
+  const float inverse_norm = 1.f / std::sqrt(x * x + y * y);
+  dir.ux = x * inverse_norm;
+  dir.uy = y * inverse_norm;
+  // cv::fastAtan2 is within about 0.3 degrees, a sixteenth of a bin: it
+  // only weighs the two bins the distance is read from.
+  dir.bin_position = cv::fastAtan2(y, x) * (kDirectionBins / 360.f);
+  if (!(dir.bin_position < kDirectionBins))
+    dir.bin_position = 0.f;
+  return dir;
+}
+
+namespace detail
+{
+// Two neighbouring bins hit the same straight edge when their distances
+// differ by at most this much (raw units of Prototype::kDistanceUnit): at
+// 5 degrees apart a straight edge changes the distance by r * tan(5 deg) /
+// tan(incidence), well within 25% of r unless the ray grazes the edge.
+constexpr int kSameEdgeAbsolute = 4;  // 2 px
+constexpr int kSameEdgeRelativeQuarters = 1;  // 25% of the longer distance
+}  // namespace detail
 
 /// Where the table ray of direction `dir` from table pixel `at` ends, table
 /// px, given the raw distances of `at` (Prototype::rawDistances). The
 /// distance is interpolated between the two nearest bins when both meet an
 /// edge at about the same distance (one straight edge); otherwise the nearest
 /// bin's end point is taken as it is. False when the nearest bin meets no edge.
-bool correctedRayEnd(const std::uint8_t* raw, const cv::Point& at, const TableDirection& dir, float& x, float& y);
+inline bool correctedRayEnd(const std::uint8_t* raw, const cv::Point& at, const TableDirection& dir, float& x,
+                            float& y)
+{
+  const int below = static_cast<int>(dir.bin_position);
+  const float above_share = dir.bin_position - static_cast<float>(below);
+  const int b0 = below % kDirectionBins, b1 = (below + 1) % kDirectionBins;
+  const int nearest = above_share < 0.5f ? b0 : b1;
+  if (raw[nearest] == Prototype::kNoEdge)
+    return false;
+  const int r0 = raw[b0], r1 = raw[b1];
+  const int larger = r0 > r1 ? r0 : r1;
+  const int limit = detail::kSameEdgeRelativeQuarters * larger / 4;
+  if (r0 != Prototype::kNoEdge && r1 != Prototype::kNoEdge &&
+      std::abs(r0 - r1) <= (limit > detail::kSameEdgeAbsolute ? limit : detail::kSameEdgeAbsolute))
+  {
+    const float r = (static_cast<float>(r0) + above_share * static_cast<float>(r1 - r0)) * Prototype::kDistanceUnit;
+    x = static_cast<float>(at.x) + r * dir.ux;
+    y = static_cast<float>(at.y) + r * dir.uy;
+    return true;
+  }
+  return tableRayEnd(raw, at, nearest, x, y);
+}
 
 /// The view shape (xx, xy, yy) of a frontal view: the identity.
 constexpr float kFrontalShape[3] = {1.f, 0.f, 1.f};

@@ -73,6 +73,11 @@ public:
                                const RelationalAffine& affine) const;
 
 private:
+  /// Eq. 6 over v's feature rays; `table_end(k, x, y)` gives where table ray
+  /// k ends (false: no edge).
+  template <typename TableEnd>
+  float featureRaysLogLikelihood(const VRayEnds& v, const RelationalAffine& affine, TableEnd table_end) const;
+
   double sigma_w_;
   double p_outlier_;
   double outlier_density_;

@@ -41,4 +41,10 @@ bool nearestEdgeSubpixel(const RadialScanner& scanner, const MappedPoint& p, dou
 /// outwards (a dark print on light paper), -1 otherwise; a sample of the
 /// points is enough to tell.
 int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped, double search);
+
+/// Share, in [0, 1], of the `outline_points` outline points (mapped into the
+/// image: `mapped`, those outside left out) that have an edge within
+/// `tolerance` px along their normal, with the polarity of the majority.
+double mappedOutlineSupport(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,
+                            std::size_t outline_points, double tolerance);
 }  // namespace amcr

@@ -6,55 +6,6 @@
 
 namespace amcr
 {
-namespace
-{
-// Two neighbouring bins hit the same straight edge when their distances
-// differ by at most this much (raw units of Prototype::kDistanceUnit): at
-// 5 degrees apart a straight edge changes the distance by r * tan(5 deg) /
-// tan(incidence), well within 25% of r unless the ray grazes the edge.
-constexpr int kSameEdgeAbsolute = 4;     // 2 px
-constexpr float kSameEdgeRelative = 0.25f;
-
-constexpr float kBinsPerDegree = kDirectionBins / 360.f;
-}  // namespace
-
-TableDirection tableDirection(const float l[4], float dx, float dy)
-{
-  TableDirection dir;
-  const float x = l[0] * dx + l[1] * dy;
-  const float y = l[2] * dx + l[3] * dy;
-  const float inverse_norm = 1.f / std::sqrt(x * x + y * y);
-  dir.ux = x * inverse_norm;
-  dir.uy = y * inverse_norm;
-  // cv::fastAtan2 is within about 0.3 degrees, a sixteenth of a bin: it
-  // only weighs the two bins the distance is read from.
-  dir.bin_position = cv::fastAtan2(y, x) * kBinsPerDegree;
-  if (!(dir.bin_position < kDirectionBins))
-    dir.bin_position = 0.f;
-  return dir;
-}
-
-bool correctedRayEnd(const std::uint8_t* raw, const cv::Point& at, const TableDirection& dir, float& x, float& y)
-{
-  const int below = static_cast<int>(dir.bin_position);
-  const float above_share = dir.bin_position - static_cast<float>(below);
-  const int b0 = below % kDirectionBins, b1 = (below + 1) % kDirectionBins;
-  const int nearest = above_share < 0.5f ? b0 : b1;
-  if (raw[nearest] == Prototype::kNoEdge)
-    return false;
-  const int r0 = raw[b0], r1 = raw[b1];
-  const int larger = std::max(r0, r1);
-  if (r0 != Prototype::kNoEdge && r1 != Prototype::kNoEdge &&
-      std::abs(r0 - r1) <= std::max(kSameEdgeAbsolute, static_cast<int>(kSameEdgeRelative * larger)))
-  {
-    const float r = (static_cast<float>(r0) + above_share * static_cast<float>(r1 - r0)) * Prototype::kDistanceUnit;
-    x = static_cast<float>(at.x) + r * dir.ux;
-    y = static_cast<float>(at.y) + r * dir.uy;
-    return true;
-  }
-  return tableRayEnd(raw, at, nearest, x, y);
-}
-
 void startingShape(const float shape[4], float theta, float hx, float hy, float l[4])
 {
   // The rotation that takes the mapped heading w = shape (hx, hy) onto theta.

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include <opencv2/core.hpp>
+
 namespace amcr
 {
 namespace
@@ -83,20 +85,26 @@ float headingCost(const Prototype& prototype, int x, int y, const RaySignature& 
 
 RayOffsets::RayOffsets(const float shape[3], float v_heading)
 {
-  // Relative to ray 0: the direction and the length the shape maps ray k to.
-  float angle[kFeatureRays];
+  // Relative to ray 0: the direction (degrees) and the length the shape maps
+  // ray k to; the ray directions turn by 45 degrees from one to the next.
+  const float turn_c = std::cos(static_cast<float>(kFeatureBinStep * kBinAngle));
+  const float turn_s = std::sin(static_cast<float>(kFeatureBinStep * kBinAngle));
+  float dx = std::cos(v_heading), dy = std::sin(v_heading);
+  float degrees[kFeatureRays];
   for (int k = 0; k < kFeatureRays; ++k)
   {
-    const double a = v_heading + k * kFeatureBinStep * kBinAngle;
-    const double dx = std::cos(a), dy = std::sin(a);
-    const double x = shape[0] * dx + shape[1] * dy, y = shape[1] * dx + shape[2] * dy;
-    angle[k] = static_cast<float>(std::atan2(y, x));
-    log_scale[k] = static_cast<float>(0.5 * std::log(x * x + y * y));
+    const float x = shape[0] * dx + shape[1] * dy, y = shape[1] * dx + shape[2] * dy;
+    degrees[k] = cv::fastAtan2(y, x);
+    log_scale[k] = 0.5f * std::log(x * x + y * y);
+    const float next_dx = turn_c * dx - turn_s * dy;
+    dy = turn_s * dx + turn_c * dy;
+    dx = next_dx;
   }
+  constexpr float kBinsPerDegree = kDirectionBins / 360.f;
   for (int k = 0; k < kFeatureRays; ++k)
   {
-    const int offset = angleToBin(angle[k] - angle[0]);
-    bin[k] = k == 0 ? 0 : offset;
+    const int offset = static_cast<int>(std::lround((degrees[k] - degrees[0]) * kBinsPerDegree)) % kDirectionBins;
+    bin[k] = offset < 0 ? offset + kDirectionBins : offset;
   }
 }
 

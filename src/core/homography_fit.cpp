@@ -188,17 +188,7 @@ Homography refineHomographyOnEdges(const Prototype& prototype, const RadialScann
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,
                       double tolerance)
 {
-  const std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
-  if (mapped.empty() || prototype.outline().empty())
-    return 0.0;
-  const int sign = dominantPolarity(scanner, mapped, tolerance);
-  int found = 0;
-  for (const auto& p : mapped)
-  {
-    double offset = 0.0;
-    found += nearestEdge(scanner, p, tolerance, sign, offset) ? 1 : 0;
-  }
-  return static_cast<double>(found) / static_cast<double>(prototype.outline().size());
+  return mappedOutlineSupport(scanner, mapOutline(prototype, table_to_image), prototype.outline().size(), tolerance);
 }
 
 double outlineResidual(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,

@@ -99,29 +99,24 @@ void ObservationModel::measure(const PrototypeMemory& memory, const VRayEnds& v,
 float ObservationModel::correctedLogLikelihood(const VRayEnds& v, const std::uint8_t* raw, const cv::Point& at,
                                                const float shape[4], const RelationalAffine& affine) const
 {
-  const float log_invalid = static_cast<float>(log_invalid_);
-  float log_l = v.invalid_feature_rays * log_invalid;
-  for (int k = 0; k < kFeatureRays; ++k)
-  {
-    if (!v.feature_valid[k])
-      continue;
-    float table_x, table_y;
-    if (!correctedRayEnd(raw, at, tableDirection(shape, v.feature_dx[k], v.feature_dy[k]), table_x, table_y))
-    {
-      log_l += log_invalid;
-      continue;
-    }
-    const float dw_squared =
-        squaredDeviation(affine, deviation_space_, table_x, table_y, v.feature_x[k], v.feature_y[k]);
-    log_l += logRayFromSquared(dw_squared);
-  }
-  return log_l;
+  return featureRaysLogLikelihood(v, affine, [&](int k, float& x, float& y) {
+    return correctedRayEnd(raw, at, tableDirection(shape, v.feature_dx[k], v.feature_dy[k]), x, y);
+  });
+}
+
+float ObservationModel::logLikelihood(const VRayEnds& v, const std::uint8_t* raw, const cv::Point& at, int bin,
+                                      const RelationalAffine& affine) const
+{
+  return featureRaysLogLikelihood(v, affine, [&](int k, float& x, float& y) {
+    return tableRayEnd(raw, at, (bin + k * kFeatureBinStep) % kDirectionBins, x, y);
+  });
 }
 
 // Paper eq. 6: the product over the feature rays of p(dw_j) (eq. 5) for a ray
 // valid on both sides, p_invalid for the others; summed in logs.
-float ObservationModel::logLikelihood(const VRayEnds& v, const std::uint8_t* raw, const cv::Point& at, int bin,
-                                      const RelationalAffine& affine) const
+template <typename TableEnd>
+float ObservationModel::featureRaysLogLikelihood(const VRayEnds& v, const RelationalAffine& affine,
+                                                 TableEnd table_end) const
 {
   const float log_invalid = static_cast<float>(log_invalid_);
   float log_l = v.invalid_feature_rays * log_invalid;
@@ -130,7 +125,7 @@ float ObservationModel::logLikelihood(const VRayEnds& v, const std::uint8_t* raw
     if (!v.feature_valid[k])
       continue;
     float table_x, table_y;
-    if (!tableRayEnd(raw, at, (bin + k * kFeatureBinStep) % kDirectionBins, table_x, table_y))
+    if (!table_end(k, table_x, table_y))
     {
       log_l += log_invalid;
       continue;

@@ -139,4 +139,19 @@ int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint
   }
   return rising >= falling ? 1 : -1;
 }
+double mappedOutlineSupport(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,
+                            std::size_t outline_points, double tolerance)
+{
+  if (mapped.empty() || outline_points == 0)
+    return 0.0;
+  // A printed shape has one polarity all round: count edges of the majority's only.
+  const int sign = dominantPolarity(scanner, mapped, tolerance);
+  int found = 0;
+  for (const auto& p : mapped)
+  {
+    double offset = 0.0;
+    found += nearestEdge(scanner, p, tolerance, sign, offset) ? 1 : 0;
+  }
+  return static_cast<double>(found) / static_cast<double>(outline_points);
+}
 }  // namespace amcr

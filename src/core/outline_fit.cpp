@@ -74,18 +74,7 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
                       double tolerance)
 {
-  const std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
-  if (mapped.empty() || prototype.outline().empty())
-    return 0.0;
-  // A printed shape has one polarity all round: count edges of the majority's only.
-  const int sign = dominantPolarity(scanner, mapped, tolerance);
-  int found = 0;
-  for (const auto& p : mapped)
-  {
-    double offset = 0.0;
-    found += nearestEdge(scanner, p, tolerance, sign, offset) ? 1 : 0;
-  }
-  return static_cast<double>(found) / static_cast<double>(prototype.outline().size());
+  return mappedOutlineSupport(scanner, mapOutline(prototype, table_to_image), prototype.outline().size(), tolerance);
 }
 
 double outlineSize(const std::vector<cv::Point2d>& outline)
