@@ -42,6 +42,17 @@ bool nearestEdgeSubpixel(const RadialScanner& scanner, const MappedPoint& p, dou
 /// points is enough to tell.
 int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped, double search);
 
+/// The search along the normals in pass `pass` of `passes` of an outline
+/// fit (affine or homography), px: from `search` it shrinks to a third over
+/// the passes (coarse to fine), never below 1.5 px.
+double passSearch(double search, int pass, int passes);
+
+/// The largest distance (px) from its edge at which an outline point still
+/// takes part in a fit, given the distances `residual` of all of them: 2.5
+/// times their median, at least 1 px; the points beyond are clutter.
+/// `residual` must not be empty.
+double clutterLimit(std::vector<double> residual);
+
 /// Share, in [0, 1], of the `outline_points` outline points (mapped into the
 /// image: `mapped`, those outside left out) that have an edge within
 /// `tolerance` px along their normal, with the polarity of the majority.

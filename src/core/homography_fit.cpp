@@ -9,9 +9,8 @@ namespace amcr
 {
 namespace
 {
-// The passes' search shrinks as the affine refinement's does (outline_fit.cpp).
-constexpr double kSearchShrink = 2.0 / 3.0;
-constexpr double kMinSearch = 1.5;  // px
+// The search of each pass (passSearch) and the clutter left out of each
+// refit (clutterLimit) are the affine refinement's, in outline_edges.h.
 // A pass fits only when this many outline points found their edge: at least
 // kMinFitPoints (twice the 4 a homography needs) and a kFitPointsDivisor-th of the outline.
 constexpr std::size_t kMinFitPoints = 8;
@@ -20,11 +19,6 @@ constexpr std::size_t kFitPointsDivisor = 4;
 // px, after at least kMinPasses passes.
 constexpr double kConverged = 0.05;
 constexpr int kMinPasses = 3;
-// Points that the least-squares homography maps beyond kResidualFactor times
-// the median distance (and beyond kMinResidualLimit px) from their edge are
-// clutter and left out of the refit.
-constexpr double kResidualFactor = 2.5;
-constexpr double kMinResidualLimit = 1.0;  // px
 
 /// The largest distance between the points mapped by `a` and by `b`.
 double largestMove(const Homography& a, const Homography& b, const std::vector<cv::Point2d>& points)
@@ -54,9 +48,7 @@ bool fitDroppingOutliers(const std::vector<cv::Point2f>& from, const std::vector
     const cv::Point2d d = applyHomography(first, cv::Point2d(from[i])) - cv::Point2d(to[i]);
     residual.push_back(std::isfinite(d.x) && std::isfinite(d.y) ? std::hypot(d.x, d.y) : HUGE_VAL);
   }
-  std::vector<double> sorted = residual;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  const double limit = std::max(kMinResidualLimit, kResidualFactor * sorted[sorted.size() / 2]);
+  const double limit = clutterLimit(residual);
   std::vector<cv::Point2f> kept_from, kept_to;
   for (std::size_t i = 0; i < from.size(); ++i)
     if (residual[i] <= limit)
@@ -157,7 +149,7 @@ Homography refineHomographyOnEdges(const Prototype& prototype, const RadialScann
   {
     // Coarse to fine: the search shrinks to a third over the passes (slowly:
     // a strong perspective needs the wide search for a few passes).
-    const double range = std::max(kMinSearch, search * (1.0 - kSearchShrink * pass / std::max(1, iterations - 1)));
+    const double range = passSearch(search, pass, iterations);
     const std::vector<MappedPoint> mapped = mapOutline(prototype, current);
     std::vector<cv::Point2f> from, to;
     for (const auto& p : mapped)

@@ -154,4 +154,18 @@ double mappedOutlineSupport(const RadialScanner& scanner, const std::vector<Mapp
   }
   return static_cast<double>(found) / static_cast<double>(outline_points);
 }
+double passSearch(double search, int pass, int passes)
+{
+  constexpr double kSearchShrink = 2.0 / 3.0;
+  constexpr double kMinSearch = 1.5;  // px
+  return std::max(kMinSearch, search * (1.0 - kSearchShrink * pass / std::max(1, passes - 1)));
+}
+
+double clutterLimit(std::vector<double> residual)
+{
+  constexpr double kResidualFactor = 2.5;
+  constexpr double kMinResidualLimit = 1.0;  // px
+  std::nth_element(residual.begin(), residual.begin() + residual.size() / 2, residual.end());
+  return std::max(kMinResidualLimit, kResidualFactor * residual[residual.size() / 2]);
+}
 }  // namespace amcr

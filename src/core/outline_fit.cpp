@@ -13,18 +13,12 @@ namespace amcr
 {
 namespace
 {
-// refineOnEdges: the search along the normals shrinks over the passes by
-// this share of params.refine_search (coarse to fine), never below a floor.
-constexpr double kSearchShrink = 2.0 / 3.0;
-constexpr double kMinSearch = 1.5;  // px
-// A pass fits only when this many outline points found their edge: at least
+// refineOnEdges: the search along the normals shrinks over the passes
+// (passSearch) and points far beyond the typical one are clutter
+// (clutterLimit), both in outline_edges.h. A pass fits only when this many outline points found their edge: at least
 // kMinFitPoints and a kFitPointsDivisor-th of the outline.
 constexpr std::size_t kMinFitPoints = 6;
 constexpr std::size_t kFitPointsDivisor = 4;
-// Points whose edge lies beyond kResidualFactor times the median offset
-// (and beyond kMinResidualLimit px) are clutter and left out of the fit.
-constexpr double kResidualFactor = 2.5;
-constexpr double kMinResidualLimit = 1.0;  // px
 }  // namespace
 
 Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
@@ -37,7 +31,7 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
   for (int pass = 0; pass < iterations; ++pass)
   {
     // Coarse to fine: the search shrinks to a third over the passes.
-    const double range = std::max(kMinSearch, search * (1.0 - kSearchShrink * pass / std::max(1, iterations - 1)));
+    const double range = passSearch(search, pass, iterations);
     const std::vector<MappedPoint> mapped = mapOutline(prototype, current);
     std::vector<cv::Point2d> from, to;
     std::vector<double> residual;
@@ -53,9 +47,7 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
     if (from.size() < std::max(kMinFitPoints, mapped.size() / kFitPointsDivisor))
       break;
     // Drop points whose edge is far beyond the typical one (clutter).
-    std::vector<double> sorted = residual;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double limit = std::max(kMinResidualLimit, kResidualFactor * sorted[sorted.size() / 2]);
+    const double limit = clutterLimit(residual);
     std::vector<cv::Point2d> kept_from, kept_to;
     for (std::size_t i = 0; i < from.size(); ++i)
       if (residual[i] <= limit)
