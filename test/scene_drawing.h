@@ -49,6 +49,11 @@ std::vector<cv::Point2d> shapePolygon(ShapeId id);
 std::shared_ptr<const amcr::PrototypeMemory> drawnMemory(const std::vector<ShapeId>& shapes,
                                                          const amcr::Params& params = amcr::Params());
 
+/// A further silhouette for larger memories: a random star-shaped polygon of
+/// 6-11 vertices drawn from `seed`, filled at 255 on 0, kPrototypeImageSize
+/// square (none of the ShapeId shapes; two seeds give different shapes).
+cv::Mat drawRandomSilhouette(std::uint64_t seed);
+
 /// The prototype image: kPrototypeImageSize x kPrototypeImageSize, CV_8UC1,
 /// the filled shape at 255 on 0 (white_on_black) or 0 on 255. Antialiased
 /// edges unless `antialiased` is false (then only 0 and 255 occur).

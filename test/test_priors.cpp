@@ -19,6 +19,7 @@ amcr::Params smallParams()
   amcr::Params p;
   p.num_v_particles = 10;
   p.m_particles_per_prototype = 20;
+  p.m_particles_per_v = 0;  // the paper's count per prototype, which the weights scale
   p.prototype_size = 64;
   p.seed = 3;
   return p;
@@ -75,6 +76,24 @@ TEST(Priors, WeightsShareTheParticlesOfEachVParticle)
   // The first step seeds every V-particle's M-particles by those shares.
   recognizer.step(frame());
   EXPECT_EQ(static_cast<int>(recognizer.mParticles().size()), p.num_v_particles * 60);
+}
+
+// With a budget (m_particles_per_v) the weights share the budget, whatever
+// the memory's size: 2:1:1 of 100 slots.
+TEST(Priors, WeightsShareTheBudgetOfEachVParticle)
+{
+  amcr::Params p = smallParams();
+  p.m_particles_per_v = 100;
+  p.min_m_particles_per_v = 10;
+  p.prototype_priors = {{"arrow", 2.0}, {"star", 1.0}};
+  amcr::Recognizer recognizer(p, memory());
+  ASSERT_EQ(recognizer.mParticlesPerV(), 100);
+  std::map<int, int> slots;
+  for (int prototype : recognizer.priorSlots())
+    ++slots[prototype];
+  EXPECT_EQ(slots[0], 50);
+  EXPECT_EQ(slots[1], 25);
+  EXPECT_EQ(slots[2], 25);
 }
 
 TEST(Priors, UnknownLabelOrAllZeroIsAParameterError)

@@ -70,6 +70,7 @@ TEST(ResourceBounds, PrototypesMultiplyTheParticles)
   amcr::Params params;
   params.num_v_particles = 2000;
   params.m_particles_per_prototype = 1500;  // 3,000,000 per prototype: valid alone
+  params.m_particles_per_v = 0;             // the paper's count, which the prototypes multiply
   EXPECT_NO_THROW(params.validate());
   const std::string error =
       errorOf<amcr::ParameterError>([&] { amcr::Recognizer recognizer(params, memoryOf(3)); });

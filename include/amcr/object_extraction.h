@@ -32,10 +32,10 @@ inline bool isConverged(const VParticleCluster& cluster, double min_share) { ret
 VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
                                  double radius);
 
-/// The dominant cluster of every V-particle (index = V index) of `v` with
-/// `per_v` M-particles each in `m`.
-std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, const MParticleSet& m, int per_v,
-                                               int prototype_count, double radius);
+/// The dominant cluster of every V-particle (index = V index) of `v`, whose
+/// M-particles in `m` are `ranges` (one per V-particle).
+std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, const MParticleSet& m,
+                                               const std::vector<MRange>& ranges, int prototype_count, double radius);
 
 /// V-particles that agree on one object: the same prototype and affines that
 /// map each other's correspondences within `group_tolerance` input px.

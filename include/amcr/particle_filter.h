@@ -10,7 +10,9 @@
 // and the V-particles of each reported object (resampleV).
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -22,6 +24,7 @@
 #include "amcr/params.h"
 #include "amcr/particles.h"
 #include "amcr/prototype_memory.h"
+#include "amcr/proposal_index.h"
 #include "amcr/prototype_prior.h"
 #include "amcr/radial_scan.h"
 #include "amcr/random.h"
@@ -102,8 +105,20 @@ public:
   const PrototypeMemory& memory() const { return *memory_; }
   const std::vector<VParticle>& vParticles() const { return v_; }
   const MParticleSet& mParticles() const { return m_; }
-  /// M-particles per V-particle: those of V-particle v are [v * perV(), (v + 1) * perV()).
+  /// M-particle slots per V-particle (the budget): those of V-particle v
+  /// start at v * mParticlesPerV().
   int mParticlesPerV() const { return static_cast<int>(prior_.slots().size()); }
+  /// The M-particles V-particle v holds now: mParticlesPerV() of them, or
+  /// fewer under KLD-sampling.
+  MRange mRange(int v) const;
+  /// Each V-particle's M-particles (index = V index).
+  std::vector<MRange> mRanges() const;
+  /// The mean number of M-particles per V-particle now.
+  double meanMParticles() const;
+  /// The proposal index, or null when index_share is 0.
+  const ProposalIndex* proposalIndex() const { return index_.get(); }
+  /// What the last memory's index build left out (a line per prototype).
+  const std::vector<std::string>& indexWarnings() const { return index_warnings_; }
   /// The prototype of each of a V-particle's M-particle slots at seeding.
   const std::vector<int>& priorSlots() const { return prior_.slots(); }
   /// The size of the image the filter was seeded on.
@@ -112,7 +127,20 @@ public:
 private:
   void seedV(VParticle& v, const RadialScanner& scanner);
   void seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const VParticle& v);
+  /// A new M-particle: with probability index_share (when the V-particle's
+  /// query found places) at one of them, else uniformly in `prototype` as
+  /// in the paper; with the importance weight of the mixture.
   void seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v);
+  void seedUniform(MParticleSet& set, std::size_t index, int prototype, const VParticle& v);
+  void seedAtCandidate(MParticleSet& set, std::size_t index, const ProposalCandidate& c);
+  /// log(seeding density / mixture density) at M-particle `index` of `set`.
+  float logProposalWeight(const MParticleSet& set, std::size_t index, double share) const;
+  /// The places of the memory the V-particle's rays look like (candidates_).
+  void findCandidates(const VParticle& v);
+  /// KLD-sampling (Fox 2003): how many M-particles the next generation of
+  /// a V-particle needs, given `picks` drawn from the current one.
+  int kldCount(const std::vector<int>& picks, std::size_t begin);
+  void buildIndex();
   /// ray_correspondence affine: gives M-particle `index` a view shape,
   /// frontal or drawn (corrected_scan.h); true when it is not frontal.
   bool drawShape(MParticleSet& set, std::size_t index);
@@ -140,5 +168,10 @@ private:
   MParticleSet m_scratch_;
   std::vector<double> weight_scratch_;
   std::vector<LeadingHypothesis> leading_;  // injected at the M-resamplings
+  std::shared_ptr<const ProposalIndex> index_;  // null when index_share is 0
+  std::vector<std::string> index_warnings_;
+  std::vector<ProposalCandidate> candidates_;  // of the V-particle being seeded or updated
+  std::vector<int> m_count_;                   // M-particles each V-particle holds
+  std::vector<std::uint64_t> kld_bins_;
 };
 }  // namespace amcr

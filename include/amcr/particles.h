@@ -56,6 +56,14 @@ struct VParticleMove
   float theta = 0.f;  ///< rad (kWithTrack only)
 };
 
+/// The M-particles of one V-particle: indices [begin, end) of the set.
+struct MRange
+{
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  std::size_t size() const { return end - begin; }
+};
+
 /// Whether MParticleSet::affine holds an affine for one M-particle.
 enum AffineState : std::uint8_t
 {
@@ -81,6 +89,10 @@ struct MParticleSet
   /// (corrected_scan.h).
   std::array<std::vector<float>, 3> shape;
   std::vector<float> log_likelihood;  ///< log p(z_k | m) of the last update
+  /// log of the importance weight a new M-particle's proposal gives it, the
+  /// seeding density over the proposal's (proposal_index.h; 0 but for a
+  /// particle drawn since the last M-resampling with the index on).
+  std::vector<float> log_proposal;
 
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);

@@ -62,6 +62,7 @@ struct RecognitionResult
   double time_ms = 0.0;
   int flow_failures = 0;      ///< V-particles re-seeded because their optical flow failed
   int converged_v_particles = 0;  ///< V-particles with a focused M-cluster
+  double mean_m_particles = 0.0;  ///< M-particles per V-particle, mean (KLD-sampling adapts it)
   /// Only objects at or above the decision threshold, best score first (of
   /// equal scores, the one found first); no two outlines overlap by more
   /// than half (intersection over union).

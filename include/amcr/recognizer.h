@@ -72,6 +72,9 @@ public:
   const std::vector<VParticle>& vParticles() const { return filter_.vParticles(); }
   const MParticleSet& mParticles() const { return filter_.mParticles(); }
   int mParticlesPerV() const { return filter_.mParticlesPerV(); }
+  /// The filter itself (M-particle ranges, the proposal index and what its
+  /// build left out).
+  const ParticleFilter& filter() const { return filter_; }
   /// The prototype of each of a V-particle's M-particle slots at seeding:
   /// the context prior (params.prototype_priors) as particle counts.
   const std::vector<int>& priorSlots() const { return filter_.priorSlots(); }

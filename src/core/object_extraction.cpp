@@ -94,14 +94,13 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
   return cluster;
 }
 
-std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, const MParticleSet& m, int per_v,
-                                               int prototype_count, double radius)
+std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, const MParticleSet& m,
+                                               const std::vector<MRange>& ranges, int prototype_count, double radius)
 {
   std::vector<VParticleCluster> clusters(v.size());
-  const std::size_t n = static_cast<std::size_t>(per_v);
   for (std::size_t i = 0; i < v.size(); ++i)
   {
-    clusters[i] = dominantCluster(m, i * n, (i + 1) * n, prototype_count, radius);
+    clusters[i] = dominantCluster(m, ranges[i].begin, ranges[i].end, prototype_count, radius);
     clusters[i].v = static_cast<int>(i);
   }
   return clusters;

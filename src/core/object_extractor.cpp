@@ -268,7 +268,7 @@ void report(const Params& params, const TrackRegistry& registry, std::vector<Can
 
 std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter)
 {
-  return dominantClusters(filter.vParticles(), filter.mParticles(), filter.mParticlesPerV(),
+  return dominantClusters(filter.vParticles(), filter.mParticles(), filter.mRanges(),
                           static_cast<int>(filter.memory().size()), filter.params().cluster_radius);
 }
 

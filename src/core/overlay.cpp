@@ -280,7 +280,7 @@ void drawStatus(cv::Mat& image, const FilterView& view, const RecognitionResult&
   const std::string status = "iteration " + std::to_string(result.iteration) + "  " +
                              format("%.1f ms", result.time_ms) + "  converged V " +
                              std::to_string(result.converged_v_particles) + "/" + std::to_string(view.v.size()) +
-                             "  objects " + std::to_string(result.objects.size()) +
+                             format("  M/V %.0f", result.mean_m_particles) + "  objects " + std::to_string(result.objects.size()) +
                              (result.iterations < 1.0 ? format("  %.2f of an iteration", result.iterations) : "");
   drawText(image, status, cv::Point(0, 0), cv::Scalar(255, 255, 255));
 }

@@ -39,6 +39,13 @@ const std::vector<NumericParameter>& numericParameters()
   static const std::vector<NumericParameter> table = {
       AMCR_INT(num_v_particles, "", 1, 5000, "V-particles in the input image; paper 30"),
       AMCR_INT(m_particles_per_prototype, "", 1, 5000, "M-particles per prototype per V-particle; paper 60"),
+      AMCR_INT(m_particles_per_v, "", 0, 100000, "M-particle budget of a V-particle, shared among the prototypes; 0 = m_particles_per_prototype per prototype (paper)"),
+      AMCR_INT(min_m_particles_per_v, "", 1, 100000, "fewest M-particles KLD-sampling leaves a V-particle"),
+      AMCR_DOUBLE(kld_error, "", 0, 1, "KLD-sampling's bound on the KL divergence between the particles and the posterior (Fox 2003); 0 = a fixed count"),
+      AMCR_DOUBLE(kld_z, "", 0, 10, "KLD-sampling's upper standard normal quantile (2.33: 99%)"),
+      AMCR_DOUBLE(index_share, "", 0, 1, "share of new M-particles drawn from the proposal index; 0 = none (paper)"),
+      AMCR_INT(index_stride, "prototype px", 1, 64, "distance between the indexed points of a prototype"),
+      AMCR_INT(index_candidates, "", 1, 1000, "places of the memory a V-particle's query returns"),
       AMCR_INT(prototype_size, "px", 32, 512, "longer side of a prototype in its lookup table"),
       AMCR_DOUBLE(max_ray_length, "px", 10, 4000, "longest radial scan in the input image"),
       AMCR_DOUBLE(edge_threshold, "grey levels", 1, 255, "step over 2 px that counts as an edge"),
@@ -134,6 +141,11 @@ void checkConsistency(const Params& p)
                          " add up to 1 or more: no M-particle would be drawn by its likelihood");
   checkParticleBound(p.num_v_particles, p.m_particles_per_prototype,
                      "m_particles_per_prototype, before the prototypes multiply it");
+  checkParticleBound(p.num_v_particles, p.m_particles_per_v, "m_particles_per_v");
+  if (p.m_particles_per_v > 0 && p.min_m_particles_per_v > p.m_particles_per_v)
+    throw ParameterError("parameter 'min_m_particles_per_v' = " + std::to_string(p.min_m_particles_per_v) +
+                         " is above 'm_particles_per_v' = " + std::to_string(p.m_particles_per_v) +
+                         ": KLD-sampling could never reach its minimum");
 }
 }  // namespace
 

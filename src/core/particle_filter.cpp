@@ -32,6 +32,8 @@ std::shared_ptr<const PrototypeMemory> checkedMemory(std::shared_ptr<const Proto
 PrototypePrior checkedPrior(const PrototypeMemory& memory, const Params& params)
 {
   PrototypePrior prior(memory, params);
+  if (params.m_particles_per_v > 0)
+    return prior;  // the budget was checked with the parameters
   const std::int64_t active = static_cast<std::int64_t>(prior.slots().size()) / params.m_particles_per_prototype;
   checkParticleBound(params.num_v_particles, static_cast<std::int64_t>(prior.slots().size()),
                      std::to_string(params.m_particles_per_prototype) + " per prototype x " + std::to_string(active) +
@@ -49,6 +51,17 @@ ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const Proto
   , motion_(params)
   , rng_(params.seed)
 {
+  buildIndex();
+}
+
+void ParticleFilter::buildIndex()
+{
+  index_warnings_.clear();
+  index_.reset();
+  if (params_.index_share <= 0.0)
+    return;
+  index_ = std::make_shared<const ProposalIndex>(*memory_, params_.index_stride, prior_.activeMask(),
+                                                 [this](const std::string& line) { index_warnings_.push_back(line); });
 }
 
 void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
@@ -62,8 +75,21 @@ void ParticleFilter::setMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
   memory = checkedMemory(std::move(memory));
   PrototypePrior prior = checkedPrior(*memory, params_);
+  std::shared_ptr<const PrototypeMemory> old_memory = std::move(memory_);
+  PrototypePrior old_prior = std::move(prior_);
   memory_ = std::move(memory);
   prior_ = std::move(prior);
+  try
+  {
+    buildIndex();
+  }
+  catch (...)
+  {
+    memory_ = std::move(old_memory);  // keep the old memory, as on any error
+    prior_ = std::move(old_prior);
+    buildIndex();
+    throw;
+  }
   reset();
 }
 
@@ -71,6 +97,8 @@ void ParticleFilter::reset()
 {
   rng_ = Rng(params_.seed);
   v_.clear();
+  m_count_.clear();
+  candidates_.clear();
   m_ = MParticleSet();
   m_scratch_ = MParticleSet();
   leading_.clear();
@@ -85,11 +113,13 @@ void ParticleFilter::seed(const RadialScanner& scanner)
   image_size_ = scanner.image().size();
   const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
   v_.assign(params_.num_v_particles, VParticle());
+  m_count_.assign(v_.size(), static_cast<int>(per_v));
   m_.resize(v_.size() * per_v);
   m_scratch_.resize(m_.size());
   for (std::size_t i = 0; i < v_.size(); ++i)
   {
     seedV(v_[i], scanner);
+    findCandidates(v_[i]);
     seedMRange(m_, i * per_v, (i + 1) * per_v, v_[i]);
   }
   leading_.clear();
@@ -131,11 +161,80 @@ void ParticleFilter::seedMRange(MParticleSet& set, std::size_t begin, std::size_
     seedM(set, begin + j, prior_.slots()[j], v);
 }
 
+// Mixture proposal (Thrun, Fox, Burgard & Dellaert's Mixture-MCL; Lenser &
+// Veloso's sensor resetting): a share of the new M-particles where the index
+// finds table rays like the V-particle's. Its importance weight
+// (logProposalWeight) keeps the filter a correct SIR for the paper's uniform
+// seeding; with the index off nothing is drawn and the weight is 1.
+void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v)
+{
+  const double share = candidates_.empty() ? 0.0 : params_.index_share;
+  if (share > 0.0 && rng_.uniform() < share)
+    seedAtCandidate(set, index, candidates_[rng_.index(candidates_.size())]);
+  else
+    seedUniform(set, index, prototype, v);
+  set.log_proposal[index] = share > 0.0 ? logProposalWeight(set, index, share) : 0.f;
+}
+
+namespace
+{
+/// Position spread of an M-particle drawn at an index place: about the half
+/// stride between indexed points, table px.
+double candidateSpread(int stride) { return std::max(0.5, 0.5 * stride); }
+}  // namespace
+
+void ParticleFilter::seedAtCandidate(MParticleSet& set, std::size_t index, const ProposalCandidate& c)
+{
+  const Prototype& p = (*memory_)[c.prototype];
+  const double spread = candidateSpread(params_.index_stride);
+  const double x = c.x + rng_.gaussian(spread), y = c.y + rng_.gaussian(spread);
+  set.x[index] = static_cast<float>(std::min(std::max(x, 0.0), p.width() - 1.0));
+  set.y[index] = static_cast<float>(std::min(std::max(y, 0.0), p.height() - 1.0));
+  set.theta[index] = static_cast<float>(wrapAngle(binToAngle(c.bin) + rng_.uniform(-0.5, 0.5) * kBinAngle));
+  set.prototype[index] = c.prototype;
+  for (int k = 0; k < 3; ++k)
+    set.shape[k][index] = kFrontalShape[k];  // the descriptor matches similarities (proposal_index.h)
+  for (auto& a : set.affine)
+    a[index] = 0.f;
+  set.affine_valid[index] = kNoAffine;
+  set.log_likelihood[index] = static_cast<float>(kFeatureRays * observation_.logInvalid());
+}
+
+// The weight pi(x) / q(x) of a new M-particle x: pi is the paper's seeding
+// density (prototype from the prior, position uniform over its interior),
+// q = (1 - share) pi + share q_index, q_index the mean of Gaussian kernels at
+// the candidates of x's prototype. The headings are proposed in both parts
+// (by the candidate, by the heading proposal) and are not weighted, as before.
+float ParticleFilter::logProposalWeight(const MParticleSet& set, std::size_t index, double share) const
+{
+  const int p = set.prototype[index];
+  const double uniform = prior_.probability(p) / std::max<std::size_t>(1, (*memory_)[p].interior().size());
+  const double spread = candidateSpread(params_.index_stride);
+  const double norm = 1.0 / (2.0 * M_PI * spread * spread * candidates_.size());
+  double kernel = 0.0;
+  for (const ProposalCandidate& c : candidates_)
+  {
+    if (c.prototype != p)
+      continue;
+    const double dx = set.x[index] - c.x, dy = set.y[index] - c.y;
+    kernel += std::exp(-(dx * dx + dy * dy) / (2.0 * spread * spread));
+  }
+  const double mixture = (1.0 - share) * uniform + share * kernel * norm;
+  return static_cast<float>(std::log(uniform) - std::log(mixture));
+}
+
+void ParticleFilter::findCandidates(const VParticle& v)
+{
+  candidates_.clear();
+  if (index_)
+    candidates_ = index_->query(v.rays, params_.index_candidates);
+}
+
 // A uniform position inside the prototype; the heading from the proposal
 // (heading_proposal.h) when the V-particle sees enough edges, else uniform.
 // With ray_correspondence affine, first a view shape, which the heading
 // proposal then matches the rays under.
-void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v)
+void ParticleFilter::seedUniform(MParticleSet& set, std::size_t index, int prototype, const VParticle& v)
 {
   const Prototype& p = (*memory_)[prototype];
   const cv::Point& at = p.interior()[rng_.index(p.interior().size())];
@@ -192,15 +291,14 @@ bool ParticleFilter::drawShape(MParticleSet& set, std::size_t index)
 void ParticleFilter::update(int v_index, const RadialScanner& scanner)
 {
   VParticle& v = v_[v_index];
-  const std::size_t begin = static_cast<std::size_t>(v_index) * mParticlesPerV();
-  const std::size_t end = begin + mParticlesPerV();
+  const MRange r = mRange(v_index);
 
   // Control from the policy; the M-particles follow through their A (paper 4.2).
   const double heading_before = v.theta;
   const Control u = policy_->decide(v, scanner, rng_);
   MotionModel::moveV(v, u);
   v.theta = static_cast<float>(wrapAngle(v.theta));
-  motion_.moveM(m_, begin, end, heading_before, u, rng_);
+  motion_.moveM(m_, r.begin, r.end, heading_before, u, rng_);
   ++v.age;
 
   measure(v_index, scanner);
@@ -209,19 +307,19 @@ void ParticleFilter::update(int v_index, const RadialScanner& scanner)
 }
 
 // Evidence that v lies on an interpretable shape: the log of its
-// M-particles' mean likelihood (spec "Resampling V").
+// M-particles' mean importance weight, the likelihood times the proposal's
+// weight (spec "Resampling V").
 void ParticleFilter::accumulateEvidence(int v_index)
 {
-  const int per_v = mParticlesPerV();
-  const std::size_t begin = static_cast<std::size_t>(v_index) * per_v, end = begin + per_v;
+  const MRange r = mRange(v_index);
   double top = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = begin; i < end; ++i)
-    top = std::max(top, static_cast<double>(m_.log_likelihood[i]));
+  for (std::size_t i = r.begin; i < r.end; ++i)
+    top = std::max(top, static_cast<double>(m_.log_likelihood[i] + m_.log_proposal[i]));
   double sum = 0.0;
-  for (std::size_t i = begin; i < end; ++i)
-    sum += std::exp(m_.log_likelihood[i] - top);
+  for (std::size_t i = r.begin; i < r.end; ++i)
+    sum += std::exp(m_.log_likelihood[i] + m_.log_proposal[i] - top);
   VParticle& v = v_[v_index];
-  v.log_evidence_sum += top + std::log(sum / per_v);
+  v.log_evidence_sum += top + std::log(sum / r.size());
   ++v.evidence_count;
 }
 
@@ -232,6 +330,32 @@ void ParticleFilter::addEvidence(const std::vector<EvidenceBonus>& evidence)
 }
 
 void ParticleFilter::setLeading(std::vector<LeadingHypothesis> leading) { leading_ = std::move(leading); }
+
+MRange ParticleFilter::mRange(int v) const
+{
+  MRange r;
+  r.begin = static_cast<std::size_t>(v) * mParticlesPerV();
+  r.end = r.begin + static_cast<std::size_t>(m_count_[v]);
+  return r;
+}
+
+std::vector<MRange> ParticleFilter::mRanges() const
+{
+  std::vector<MRange> ranges(v_.size());
+  for (std::size_t i = 0; i < v_.size(); ++i)
+    ranges[i] = mRange(static_cast<int>(i));
+  return ranges;
+}
+
+double ParticleFilter::meanMParticles() const
+{
+  if (m_count_.empty())
+    return 0.0;
+  double sum = 0.0;
+  for (int count : m_count_)
+    sum += count;
+  return sum / m_count_.size();
+}
 
 // ---------------------------------------------------------------------------
 // Moves from outside
@@ -257,7 +381,9 @@ int ParticleFilter::applyFlow(const std::vector<VParticleMove>& moves, const Rad
         break;
       case VParticleMove::Kind::kLost:
         seedV(v, scanner);
+        findCandidates(v);
         seedMRange(m_, i * per_v, (i + 1) * per_v, v);
+        m_count_[i] = static_cast<int>(per_v);
         ++lost;
         break;
     }

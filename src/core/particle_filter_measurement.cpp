@@ -22,6 +22,7 @@ void ParticleFilter::measure(int v_index, const RadialScanner& scanner)
     v_valid[k] = hits[k].valid;
   }
   v.rays = raySignature(hits);
+  findCandidates(v);  // for the M-particles this iteration seeds
   for (int t = 1; t < kTriangleRays; ++t)
   {
     const RayHit hit = scanner.scanAngle(v.x, v.y, v.theta + t * kTriangleBinStep * kBinAngle);
@@ -31,12 +32,11 @@ void ParticleFilter::measure(int v_index, const RadialScanner& scanner)
 
   // Spec "Motion model": an M-particle that has left its prototype is
   // re-seeded, in index order, before the update.
-  const std::size_t begin = static_cast<std::size_t>(v_index) * mParticlesPerV();
-  const std::size_t end = begin + mParticlesPerV();
-  for (std::size_t i = begin; i < end; ++i)
+  const MRange r = mRange(v_index);
+  for (std::size_t i = r.begin; i < r.end; ++i)
     if (!insideTable((*memory_)[m_.prototype[i]], nearestTablePixel(m_.x[i], m_.y[i])))
       seedM(m_, i, m_.prototype[i], v);
   // The relational update of paper 4.1 and eqs. 5-6 (ObservationModel::measure).
-  observation_.measure(*memory_, rayEnds(v, v_dist, v_valid), m_, begin, end);
+  observation_.measure(*memory_, rayEnds(v, v_dist, v_valid), m_, r.begin, r.end);
 }
 }  // namespace amcr

@@ -22,34 +22,100 @@ constexpr int kVParticlesPerObject = 12;
 }  // namespace
 
 // SIR over all prototypes of R^-1(v) (paper 3.6), with a share re-seeded
-// uniformly and a share placed at the poses the leading hypotheses imply.
+// (seedM: uniformly or from the index) and a share placed at the poses the
+// leading hypotheses imply; the weights are the likelihoods times the
+// proposal weights of the M-particles seeded since the last resampling.
+// KLD-sampling sets the size of the next generation.
 void ParticleFilter::resampleM(int v_index)
 {
   const VParticle& v = v_[v_index];
-  const int per_v = mParticlesPerV();
-  const std::size_t begin = static_cast<std::size_t>(v_index) * per_v;
-  weight_scratch_.resize(per_v);
+  const MRange r = mRange(v_index);
+  const std::size_t begin = r.begin;
+  const int count = static_cast<int>(r.size());
+  weight_scratch_.resize(count);
   float worst = std::numeric_limits<float>::infinity();
-  for (int j = 0; j < per_v; ++j)
+  for (int j = 0; j < count; ++j)
   {
-    weight_scratch_[j] = m_.log_likelihood[begin + j];
+    weight_scratch_[j] = m_.log_likelihood[begin + j] + m_.log_proposal[begin + j];
     worst = std::min(worst, m_.log_likelihood[begin + j]);
   }
-  int n_inject = leading_.empty() ? 0 : static_cast<int>(std::lround(params_.injection_fraction * per_v));
-  int n_reseed = static_cast<int>(std::lround(params_.m_reseed_fraction * per_v));
-  n_inject = std::min(n_inject, per_v);
-  n_reseed = std::min(n_reseed, per_v - n_inject);
-  const int n_draw = per_v - n_inject - n_reseed;
+  const int capacity = mParticlesPerV();
+  std::vector<int> picks;
+  int next = capacity;
+  if (params_.kld_error > 0.0)
+  {
+    picks = systematicResampleLog(weight_scratch_, capacity, rng_);
+    next = kldCount(picks, begin);
+  }
+  // The re-seeded share is one of the budget: a V-particle whose particles
+  // agree keeps exploring at the rate of a spread one (up to a quarter of
+  // its particles).
+  int n_inject = leading_.empty() ? 0 : static_cast<int>(std::lround(params_.injection_fraction * next));
+  int n_reseed = std::min(static_cast<int>(std::lround(params_.m_reseed_fraction * capacity)),
+                          next == capacity ? capacity : next / 4);
+  n_inject = std::min(n_inject, next);
+  n_reseed = std::min(n_reseed, next - n_inject);
+  const int n_draw = next - n_inject - n_reseed;
 
-  const std::vector<int> picks = systematicResampleLog(weight_scratch_, n_draw, rng_);
+  if (params_.kld_error > 0.0)
+  {
+    // Thin the capacity picks systematically (they are sorted) to n_draw.
+    for (int k = 0; k < n_draw; ++k)
+      picks[k] = picks[static_cast<std::size_t>(k) * capacity / std::max(1, n_draw)];
+    picks.resize(n_draw);
+  }
+  else
+  {
+    picks = systematicResampleLog(weight_scratch_, n_draw, rng_);
+  }
   int k = 0;
   for (; k < n_draw; ++k)
+  {
     m_scratch_.copyFrom(m_, begin + picks[k], begin + k);
+    m_scratch_.log_proposal[begin + k] = 0.f;  // weighted once, at this resampling
+  }
   for (int j = 0; j < n_inject; ++j, ++k)
     injectM(v, leading_[j % leading_.size()], begin + k, worst);
   for (int j = 0; j < n_reseed; ++j, ++k)
     seedM(m_scratch_, begin + k, prior_.draw(rng_), v);
-  m_.copyRange(m_scratch_, begin, begin + per_v);
+  m_.copyRange(m_scratch_, begin, begin + next);
+  m_count_[v_index] = next;
+}
+
+namespace
+{
+// KLD-sampling's bins: about a cluster (cluster_radius 6 px) across, and
+// the heading in 20 degree steps.
+constexpr float kKldCell = 8.f;                                        // table px
+constexpr float kKldAngle = static_cast<float>(20.0 * M_PI / 180.0);  // rad
+}  // namespace
+
+// Fox 2003, eq. for n_chi: the number of particles that keeps the KL
+// divergence between them and the posterior below kld_error with
+// probability 1 - delta (kld_z its upper quantile), for k occupied bins of
+// (prototype, position, heading); amcl's pf_resample_limit is the same bound.
+int ParticleFilter::kldCount(const std::vector<int>& picks, std::size_t begin)
+{
+  kld_bins_.clear();
+  for (int pick : picks)
+  {
+    const std::size_t i = begin + pick;
+    const auto bx = static_cast<std::uint64_t>(static_cast<std::uint16_t>(std::floor(m_.x[i] / kKldCell)));
+    const auto by = static_cast<std::uint64_t>(static_cast<std::uint16_t>(std::floor(m_.y[i] / kKldCell)));
+    const auto bt = static_cast<std::uint64_t>(static_cast<std::uint16_t>(std::floor(m_.theta[i] / kKldAngle) + 64));
+    kld_bins_.push_back(static_cast<std::uint64_t>(m_.prototype[i]) << 48 | bx << 32 | by << 16 | bt);
+  }
+  std::sort(kld_bins_.begin(), kld_bins_.end());
+  const int bins = static_cast<int>(std::unique(kld_bins_.begin(), kld_bins_.end()) - kld_bins_.begin());
+  const int capacity = mParticlesPerV();
+  const int least = std::min(params_.min_m_particles_per_v, capacity);
+  if (bins <= 1)
+    return least;
+  const double k = bins - 1;
+  const double b = 2.0 / (9.0 * k);
+  const double c = 1.0 - b + std::sqrt(b) * params_.kld_z;
+  const double n = std::ceil(k / (2.0 * params_.kld_error) * c * c * c);
+  return static_cast<int>(std::min<double>(capacity, std::max<double>(least, n)));
 }
 
 // The pose of v in the prototype that hypothesis h implies (its position,
@@ -82,6 +148,7 @@ void ParticleFilter::injectM(const VParticle& v, const LeadingHypothesis& h, std
   for (int k = 0; k < 3; ++k)
     m_scratch_.shape[k][index] = shape[k];
   m_scratch_.log_likelihood[index] = worst;
+  m_scratch_.log_proposal[index] = 0.f;
 }
 
 // Each V-particle's log V-weight: its mean log evidence since the last
@@ -129,6 +196,7 @@ std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
     }
 
   std::vector<VParticle> next(n);
+  std::vector<int> next_count(n, static_cast<int>(per_v));
   std::vector<bool> used(n, false);
   for (int k = 0; k < n; ++k)
   {
@@ -137,18 +205,21 @@ std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
     if (from < 0)
     {
       seedV(next[k], scanner);
+      findCandidates(next[k]);
       seedMRange(m_scratch_, begin, end, next[k]);
       continue;
     }
     next[k] = v_[from];
-    for (std::size_t j = 0; j < per_v; ++j)
+    next_count[k] = m_count_[from];
+    for (std::size_t j = 0; j < static_cast<std::size_t>(m_count_[from]); ++j)
       m_scratch_.copyFrom(m_, static_cast<std::size_t>(from) * per_v + j, begin + j);
+    const std::size_t copied_end = begin + static_cast<std::size_t>(next_count[k]);
     if (used[from])
     {
       // A copy turns to a random heading so the copies explore apart; its
       // M-particles turn with it through their A.
       const Control turn{rng_.uniform(-M_PI, M_PI), 0.0};
-      motion_.moveM(m_scratch_, begin, end, next[k].theta, turn, rng_);
+      motion_.moveM(m_scratch_, begin, copied_end, next[k].theta, turn, rng_);
       MotionModel::moveV(next[k], turn);
       next[k].theta = static_cast<float>(wrapAngle(next[k].theta));
     }
@@ -160,6 +231,7 @@ std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
     v.evidence_count = 0;
   }
   v_ = std::move(next);
+  m_count_ = std::move(next_count);
   std::swap(m_, m_scratch_);
   return source;
 }

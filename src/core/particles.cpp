@@ -38,6 +38,7 @@ void MParticleSet::resize(std::size_t n)
   for (auto& s : shape)
     s.resize(n, 0.f);
   log_likelihood.resize(n);
+  log_proposal.resize(n, 0.f);
 }
 
 void MParticleSet::copy(std::size_t from, std::size_t to) { copyFrom(*this, from, to); }
@@ -54,6 +55,7 @@ void MParticleSet::copyFrom(const MParticleSet& source, std::size_t from, std::s
   for (int k = 0; k < 3; ++k)
     shape[k][to] = source.shape[k][from];
   log_likelihood[to] = source.log_likelihood[from];
+  log_proposal[to] = source.log_proposal[from];
 }
 void MParticleSet::copyRange(const MParticleSet& source, std::size_t begin, std::size_t end)
 {
@@ -70,5 +72,6 @@ void MParticleSet::copyRange(const MParticleSet& source, std::size_t begin, std:
   for (int k = 0; k < 3; ++k)
     range(source.shape[k], shape[k]);
   range(source.log_likelihood, log_likelihood);
+  range(source.log_proposal, log_proposal);
 }
 }  // namespace amcr

@@ -64,7 +64,12 @@ PrototypePrior::PrototypePrior(const PrototypeMemory& memory, const Params& para
   if (active_.empty())
     throw ParameterError("prototype_priors gives every prototype of the memory weight 0");
 
-  const int slots = params.m_particles_per_prototype * static_cast<int>(active_.size());
+  probability_.assign(weight.size(), 0.0);
+  for (int p : active_)
+    probability_[p] = weight[p] / total;
+  // Issue 14: a budget that does not grow with the memory; the paper's count per prototype as a mode.
+  const int slots = params.m_particles_per_v > 0 ? params.m_particles_per_v
+                                                 : params.m_particles_per_prototype * static_cast<int>(active_.size());
   const std::vector<int> share = shareSlots(slots, active_, weight, total);
   for (std::size_t a = 0; a < active_.size(); ++a)
     slots_.insert(slots_.end(), share[a], active_[a]);
@@ -76,6 +81,14 @@ PrototypePrior::PrototypePrior(const PrototypeMemory& memory, const Params& para
     for (int p : active_)
       cdf_.push_back(sum += weight[p] / total);
   }
+}
+
+std::vector<bool> PrototypePrior::activeMask() const
+{
+  std::vector<bool> mask(probability_.size(), false);
+  for (int p : active_)
+    mask[p] = true;
+  return mask;
 }
 
 int PrototypePrior::draw(Rng& rng) const

@@ -95,6 +95,7 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   if (budget_.limited())
     budget_.recordExtraction(budget_.now() - extraction_start);
 
+  result.mean_m_particles = filter_.meanMParticles();
   result.iteration = iteration_;
   result.time_ms = budget_.now() - start;
   return result;
@@ -154,10 +155,13 @@ FilterView Recognizer::view() const
     view.v.push_back(particle);
   }
   const MParticleSet& m = filter_.mParticles();
-  const std::size_t per_v = static_cast<std::size_t>(filter_.mParticlesPerV());
   view.m_by_prototype.resize(filter_.memory().size());
-  for (std::size_t i = 0; i < m.size() && per_v > 0; ++i)
-    view.m_by_prototype[m.prototype[i]].push_back({cv::Point2f(m.x[i], m.y[i]), static_cast<int>(i / per_v)});
+  for (std::size_t k = 0; k < v.size(); ++k)
+  {
+    const MRange r = filter_.mRange(static_cast<int>(k));
+    for (std::size_t i = r.begin; i < r.end; ++i)
+      view.m_by_prototype[m.prototype[i]].push_back({cv::Point2f(m.x[i], m.y[i]), static_cast<int>(k)});
+  }
   return view;
 }
 

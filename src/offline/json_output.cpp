@@ -194,6 +194,7 @@ std::string frameJson(long frame, const RecognitionResult& result)
   out += ", \"time_ms\": " + jsonNumber(result.time_ms, kTimeDecimals);
   out += ", \"iteration\": " + std::to_string(result.iteration);
   out += ", \"iterations\": " + jsonNumber(result.iterations, kShareDecimals);
+  out += ", \"mean_m_particles\": " + jsonNumber(result.mean_m_particles, 1);
   out += ", \"objects\": [";
   for (std::size_t i = 0; i < result.objects.size(); ++i)
   {

@@ -174,7 +174,9 @@ Output, one line per input frame (numbers in px, time in ms):
    "image_to_prototype": [[a, b, c], [d, e, f]],
    "prototype_to_image": [[a, b, c], [d, e, f]],
    "correspondences": [[x_image, y_image, x_prototype, y_prototype], ...]}]}
-  "objects" is empty when nothing is recognized. Prototype coordinates are
+  Each line also holds "iterations" (the share of an iteration the frame
+  ran) and "mean_m_particles" (M-particles per V-particle, which
+  KLD-sampling adapts). "objects" is empty when nothing is recognized. Prototype coordinates are
   pixels of the original prototype file (OpenCV pixel-centre convention).
   Numbers that are not finite are written as null.
 

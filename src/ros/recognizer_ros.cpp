@@ -261,7 +261,8 @@ bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_ove
     frame.message = toMsg(frame.result, msg->header);
     frame.memory = memory_;
     stats_.processed(frame.message, {frame.result.converged_v_particles, params_.num_v_particles,
-                                     frame.result.flow_failures, params_.frame_budget_ms});
+                                     frame.result.flow_failures, params_.frame_budget_ms,
+                                     frame.result.mean_m_particles});
     if (draw_overlay)
     {
       try

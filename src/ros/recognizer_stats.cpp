@@ -1,5 +1,6 @@
 #include "recognizer_stats.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include <diagnostic_msgs/DiagnosticStatus.h>
@@ -34,6 +35,7 @@ void RecognizerStats::processed(const amcr::Recognitions& out, const FilterState
   iteration_ = out.iteration;
   iterations_mean_ = processed_ == 1 ? out.iterations : 0.9 * iterations_mean_ + 0.1 * out.iterations;
   converged_ = state.converged_v_particles;
+  mean_m_particles_ = state.mean_m_particles;
   num_v_ = state.num_v_particles;
   flow_failures_ += state.flow_failures;
   budget_ms_ = state.budget_ms;
@@ -107,6 +109,7 @@ void RecognizerStats::report(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("frame budget used, mean (%)", budget_ms_ > 0.0 ? 100.0 * mean_ms_ / budget_ms_ : 0.0);
   status.add("V-particles re-seeded by failed flows", flow_failures_);
   status.add("converged V-particles", std::to_string(converged_) + " of " + std::to_string(num_v_));
+  status.add("M-particles per V-particle (mean)", static_cast<int>(std::lround(mean_m_particles_)));
   status.add("leading hypotheses", leading_.empty() ? "none" : leading_);
 }
 }  // namespace amcr_ros

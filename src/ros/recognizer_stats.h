@@ -28,6 +28,7 @@ public:
     int converged_v_particles = 0;
     int num_v_particles = 0;
     int flow_failures = 0;     ///< V-particles re-seeded because their flow failed
+    double mean_m_particles = 0.0;  ///< M-particles per V-particle, mean (KLD-sampling)
     double budget_ms = 0.0;    ///< ~frame_budget_ms, 0 = none
   };
   void processed(const amcr::Recognitions& out, const FilterState& state);
@@ -50,6 +51,7 @@ private:
   double last_ms_ = 0.0, mean_ms_ = 0.0;
   long iteration_ = 0;
   int converged_ = 0, num_v_ = 0;
+  double mean_m_particles_ = 0.0;
   double iterations_mean_ = 0.0, budget_ms_ = 0.0;
   long flow_failures_ = 0;
   std::string leading_;

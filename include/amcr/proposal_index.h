@@ -1,0 +1,107 @@
+// A proposal index over the prototype tables (issue 14; the data-driven
+// proposals of Mixture-MCL, Thrun, Fox, Burgard & Dellaert 2001): for points
+// of every prototype at a stride and every heading bin, the 8 feature rays
+// the table holds there, described up to scale; a V-particle's own 8 rays,
+// described the same way, find the (prototype, point, heading, scale) places
+// of the whole memory that look like what it sees, by an approximate
+// nearest-neighbour search (OpenCV's FLANN, randomised k-d trees).
+//
+// The descriptor is the rays' log distances minus their mean: a similarity
+// leaves it unchanged (the scale goes into the mean, a rotation by a multiple
+// of the bin into the heading); an affine view changes it in proportion to
+// its log anisotropy, so the index serves near-frontal views best and the
+// uniform proposal keeps the rest.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "amcr/particles.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/ray_directions.h"
+
+namespace cv
+{
+namespace flann
+{
+class Index;
+}
+}  // namespace cv
+
+namespace amcr
+{
+/// The descriptor of 8 feature rays (see above).
+using RayDescriptor = std::array<float, kFeatureRays>;
+
+/// The descriptor of a V-particle's measured rays; false (and `out` left
+/// alone) unless all 8 rays met an edge.
+bool describeRays(const RaySignature& rays, RayDescriptor& out);
+
+/// The descriptor of the table rays at pixel (x, y) of `prototype` for
+/// heading bin `bin`; false unless all 8 meet an edge in the table.
+bool describeTableRays(const Prototype& prototype, int x, int y, int bin, RayDescriptor& out);
+
+/// One place of the memory that looks like a V-particle's scan.
+struct ProposalCandidate
+{
+  int prototype = -1;
+  float x = 0.f;         ///< table px
+  float y = 0.f;         ///< table px
+  int bin = 0;           ///< heading bin (ray_directions.h)
+  float log_scale = 0;   ///< log(table px per input px) of the rays' mean
+  float distance = 0;    ///< descriptor distance (L2, log units)
+};
+
+class ProposalIndex
+{
+public:
+  using WarningSink = std::function<void(const std::string&)>;
+
+  /// Fewest places (indexed pixels with at least one heading whose 8 rays
+  /// all meet an edge) a prototype needs: below it, it is too thin or too
+  /// small at this stride for the index to find it.
+  static constexpr int kMinPlacesPerPrototype = 10;
+
+  /// Indexes every prototype of `memory` whose `active` flag is set (all when
+  /// `active` is empty) at pixels `stride` table px apart. A prototype with
+  /// fewer than kMinPlacesPerPrototype places is left out with a warning
+  /// naming it (it is still found by the uniform proposal). Throws
+  /// ParameterError for a stride below 1, MemoryError when no entry is left.
+  ProposalIndex(const PrototypeMemory& memory, int stride, const std::vector<bool>& active = {},
+                const WarningSink& warn = WarningSink());
+  ~ProposalIndex();
+  ProposalIndex(const ProposalIndex&) = delete;
+  ProposalIndex& operator=(const ProposalIndex&) = delete;
+
+  /// The `k` entries nearest to the V-particle's rays (approximate search),
+  /// nearest first; empty unless all 8 rays met an edge.
+  std::vector<ProposalCandidate> query(const RaySignature& rays, int k) const;
+
+  /// The same by exhaustive search: the reference the tests hold query() to.
+  std::vector<ProposalCandidate> queryExact(const RaySignature& rays, int k) const;
+
+  std::size_t size() const { return entries_.size(); }
+  int stride() const { return stride_; }
+  /// Labels of the prototypes left out of the index.
+  const std::vector<std::string>& leftOut() const { return left_out_; }
+
+private:
+  struct Entry
+  {
+    int prototype;
+    short x, y, bin;
+    float log_mean;  // mean log table distance of the 8 rays
+  };
+  std::vector<ProposalCandidate> candidates(float query_log_mean, const std::vector<int>& indices,
+                                            const std::vector<float>& dists) const;
+
+  int stride_;
+  std::vector<Entry> entries_;
+  cv::Mat descriptors_;  // one row per entry, CV_32F
+  std::unique_ptr<cv::flann::Index> index_;
+  std::vector<std::string> left_out_;
+};
+}  // namespace amcr

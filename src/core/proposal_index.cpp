@@ -1,0 +1,192 @@
+#include "amcr/proposal_index.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include <opencv2/flann.hpp>
+
+#include "amcr/errors.h"
+
+namespace amcr
+{
+namespace
+{
+constexpr int kKdTrees = 4;      // randomised k-d trees of the FLANN index
+constexpr int kSearchChecks = 128;  // leaves a query visits: recall against time (test_proposal_index.cpp)
+constexpr std::uint64_t kTreeSeed = 1;  // of the trees' random splits
+
+/// Log distances minus their mean; the mean in `log_mean`.
+void centre(const float log_distance[kFeatureRays], RayDescriptor& out, float& log_mean)
+{
+  float sum = 0.f;
+  for (int k = 0; k < kFeatureRays; ++k)
+    sum += log_distance[k];
+  log_mean = sum / kFeatureRays;
+  for (int k = 0; k < kFeatureRays; ++k)
+    out[k] = log_distance[k] - log_mean;
+}
+
+bool describe(const RaySignature& rays, RayDescriptor& out, float& log_mean)
+{
+  float logs[kFeatureRays];
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    if (!(rays.distance[k] > 0.f))
+      return false;
+    logs[k] = std::log(std::max(0.25f, rays.distance[k]));
+  }
+  centre(logs, out, log_mean);
+  return true;
+}
+
+bool describeTable(const Prototype& prototype, int x, int y, int bin, RayDescriptor& out, float& log_mean)
+{
+  const std::uint8_t* raw = prototype.rawDistances(x, y);
+  float logs[kFeatureRays];
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const std::uint8_t d = raw[(bin + k * kFeatureBinStep) % kDirectionBins];
+    if (d == Prototype::kNoEdge)
+      return false;
+    logs[k] = std::log(std::max(0.25f, d * Prototype::kDistanceUnit));
+  }
+  centre(logs, out, log_mean);
+  return true;
+}
+}  // namespace
+
+bool describeRays(const RaySignature& rays, RayDescriptor& out)
+{
+  float log_mean = 0.f;
+  return describe(rays, out, log_mean);
+}
+
+bool describeTableRays(const Prototype& prototype, int x, int y, int bin, RayDescriptor& out)
+{
+  float log_mean = 0.f;
+  return describeTable(prototype, x, y, bin, out, log_mean);
+}
+
+ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const std::vector<bool>& active,
+                             const WarningSink& warn)
+  : stride_(stride)
+{
+  if (stride < 1)
+    throw ParameterError("index_stride must be at least 1 table px, got " + std::to_string(stride));
+  std::vector<RayDescriptor> rows;
+  for (std::size_t p = 0; p < memory.size(); ++p)
+  {
+    if (!active.empty() && !active[p])
+      continue;
+    const Prototype& prototype = memory[p];
+    const std::size_t first = entries_.size();
+    int places = 0;
+    for (const cv::Point& at : prototype.interior())
+    {
+      if (at.x % stride != 0 || at.y % stride != 0)
+        continue;
+      const std::size_t before = entries_.size();
+      for (int bin = 0; bin < kDirectionBins; ++bin)
+      {
+        RayDescriptor d;
+        float log_mean = 0.f;
+        if (!describeTable(prototype, at.x, at.y, bin, d, log_mean))
+          continue;
+        entries_.push_back({static_cast<int>(p), static_cast<short>(at.x), static_cast<short>(at.y),
+                            static_cast<short>(bin), log_mean});
+        rows.push_back(d);
+      }
+      places += entries_.size() > before ? 1 : 0;
+    }
+    if (places < kMinPlacesPerPrototype)
+    {
+      entries_.resize(first);
+      rows.resize(first);
+      left_out_.push_back(prototype.label());
+      if (warn)
+        warn("prototype '" + prototype.label() + "' is left out of the proposal index: " + std::to_string(places) +
+             " of its pixels at a stride of " + std::to_string(stride) + " px see an edge on all 8 rays (it needs " +
+             std::to_string(kMinPlacesPerPrototype) + "); it is too thin or too small to index");
+    }
+  }
+  if (entries_.empty())
+    throw MemoryError("the proposal index has no usable entry: no prototype has " +
+                      std::to_string(kMinPlacesPerPrototype) + " pixels at a stride of " + std::to_string(stride) +
+                      " px whose 8 rays all meet an edge (set index_share to 0 to work without it)");
+  descriptors_.create(static_cast<int>(rows.size()), kFeatureRays, CV_32F);
+  for (int r = 0; r < descriptors_.rows; ++r)
+    std::copy(rows[r].begin(), rows[r].end(), descriptors_.ptr<float>(r));
+  // FLANN's randomised trees draw from OpenCV's generator of this thread:
+  // seed it, so that the same memory gives the same index (and the same
+  // proposals), and give the caller its state back.
+  const cv::RNG caller_state = cv::theRNG();
+  cv::theRNG() = cv::RNG(kTreeSeed);
+  index_ = std::make_unique<cv::flann::Index>(descriptors_, cv::flann::KDTreeIndexParams(kKdTrees));
+  cv::theRNG() = caller_state;
+}
+
+ProposalIndex::~ProposalIndex() = default;
+
+std::vector<ProposalCandidate> ProposalIndex::candidates(float query_log_mean, const std::vector<int>& indices,
+                                                         const std::vector<float>& dists) const
+{
+  std::vector<ProposalCandidate> out;
+  for (std::size_t i = 0; i < indices.size(); ++i)
+  {
+    if (indices[i] < 0 || indices[i] >= static_cast<int>(entries_.size()))
+      continue;  // FLANN pads a short answer with -1
+    const Entry& e = entries_[indices[i]];
+    ProposalCandidate c;
+    c.prototype = e.prototype;
+    c.x = e.x;
+    c.y = e.y;
+    c.bin = e.bin;
+    c.log_scale = e.log_mean - query_log_mean;
+    c.distance = std::sqrt(std::max(0.f, dists[i]));
+    out.push_back(c);
+  }
+  return out;
+}
+
+std::vector<ProposalCandidate> ProposalIndex::query(const RaySignature& rays, int k) const
+{
+  RayDescriptor d;
+  float log_mean = 0.f;
+  if (k < 1 || !describe(rays, d, log_mean))
+    return {};
+  k = std::min<int>(k, static_cast<int>(entries_.size()));
+  std::vector<float> q(d.begin(), d.end());
+  std::vector<int> indices(k, -1);
+  std::vector<float> dists(k, 0.f);
+  index_->knnSearch(q, indices, dists, k, cv::flann::SearchParams(kSearchChecks));
+  return candidates(log_mean, indices, dists);
+}
+
+std::vector<ProposalCandidate> ProposalIndex::queryExact(const RaySignature& rays, int k) const
+{
+  RayDescriptor d;
+  float log_mean = 0.f;
+  if (k < 1 || !describe(rays, d, log_mean))
+    return {};
+  std::vector<std::pair<float, int>> all(entries_.size());
+  for (int r = 0; r < descriptors_.rows; ++r)
+  {
+    const float* row = descriptors_.ptr<float>(r);
+    float sum = 0.f;
+    for (int j = 0; j < kFeatureRays; ++j)
+      sum += (row[j] - d[j]) * (row[j] - d[j]);
+    all[r] = {sum, r};
+  }
+  k = std::min<int>(k, static_cast<int>(all.size()));
+  std::partial_sort(all.begin(), all.begin() + k, all.end());
+  std::vector<int> indices(k);
+  std::vector<float> dists(k);
+  for (int i = 0; i < k; ++i)
+  {
+    dists[i] = all[i].first;
+    indices[i] = all[i].second;
+  }
+  return candidates(log_mean, indices, dists);
+}
+}  // namespace amcr

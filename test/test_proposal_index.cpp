@@ -1,0 +1,252 @@
+// The proposal index (proposal_index.h): a V-particle's 8 feature rays find
+// the (prototype, point, heading) places of the memory whose table rays look
+// alike. Measured shares are in brackets beside each bound.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "amcr/errors.h"
+#include "amcr/proposal_index.h"
+#include "amcr/radial_scan.h"
+#include "scene_drawing.h"
+
+namespace
+{
+using amcr_test::ShapeId;
+
+constexpr int kStride = 4;       // table px, the default index_stride
+constexpr int kCandidates = 16;  // the default index_candidates
+
+/// Angular distance in bins, modulo a turn.
+int binDistance(int a, int b)
+{
+  const int d = std::abs(a - b) % amcr::kDirectionBins;
+  return std::min(d, amcr::kDirectionBins - d);
+}
+
+/// Whether a candidate names prototype `p` within `radius` table px of
+/// `at` and within `bins` of heading bin `bin`.
+bool hits(const std::vector<amcr::ProposalCandidate>& candidates, int p, const cv::Point2d& at, int bin, double radius,
+          int bins)
+{
+  for (const amcr::ProposalCandidate& c : candidates)
+    if (c.prototype == p && std::hypot(c.x - at.x, c.y - at.y) <= radius && binDistance(c.bin, bin) <= bins)
+      return true;
+  return false;
+}
+
+/// The table's own rays at (x, y) and `bin`, scaled, as a V-particle would see them.
+amcr::RaySignature tableSignature(const amcr::Prototype& p, int x, int y, int bin, float scale)
+{
+  amcr::RaySignature s;
+  for (int k = 0; k < amcr::kFeatureRays; ++k)
+  {
+    const float d = p.distance(x, y, (bin + k * amcr::kFeatureBinStep) % amcr::kDirectionBins);
+    s.distance[k] = d > 0.f ? scale * d : 0.f;
+  }
+  return s;
+}
+
+class ProposalIndexTest : public ::testing::Test
+{
+protected:
+  static void SetUpTestSuite()
+  {
+    memory_ = amcr_test::drawnMemory(amcr_test::allShapes());
+    index_ = std::make_unique<amcr::ProposalIndex>(*memory_, kStride);
+  }
+  static void TearDownTestSuite()
+  {
+    index_.reset();
+    memory_.reset();
+  }
+  static std::shared_ptr<const amcr::PrototypeMemory> memory_;
+  static std::unique_ptr<amcr::ProposalIndex> index_;
+};
+std::shared_ptr<const amcr::PrototypeMemory> ProposalIndexTest::memory_;
+std::unique_ptr<amcr::ProposalIndex> ProposalIndexTest::index_;
+
+// Scans taken from a table at any pixel (not only the indexed ones) and any
+// bin, at any scale: the true place is among the candidates.
+TEST_F(ProposalIndexTest, FindsTheTablesOwnScansAtAnyScale)
+{
+  std::mt19937_64 gen(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int tried = 0, found = 0;
+  for (std::size_t p = 0; p < memory_->size(); ++p)
+  {
+    const amcr::Prototype& prototype = (*memory_)[p];
+    for (int trial = 0; trial < 200; ++trial)
+    {
+      const cv::Point at = prototype.interior()[gen() % prototype.interior().size()];
+      const int bin = static_cast<int>(gen() % amcr::kDirectionBins);
+      const amcr::RaySignature s = tableSignature(prototype, at.x, at.y, bin, static_cast<float>(0.4 + 2.6 * unit(gen)));
+      if (s.valid_rays() < amcr::kFeatureRays)
+        continue;
+      ++tried;
+      found += hits(index_->query(s, kCandidates), static_cast<int>(p), at, bin, 2.0 * kStride, 1) ? 1 : 0;
+    }
+  }
+  ASSERT_GT(tried, 800);
+  EXPECT_GE(found, 0.8 * tried) << found << " of " << tried;  // [0.87]
+}
+
+// The prototypes drawn into an image under random similarities and moderate
+// affines (anisotropy up to 1.25, shear up to 0.1), scanned as a V-particle
+// scans: the true place (within two strides and two bins) is among the
+// candidates in most cases.
+TEST_F(ProposalIndexTest, FindsDrawnShapesUnderSimilaritiesAndModerateAffines)
+{
+  std::mt19937_64 gen(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const amcr::Params params;
+  int tried_similar = 0, found_similar = 0, tried_affine = 0, found_affine = 0;
+  for (ShapeId id : amcr_test::allShapes())
+  {
+    const int p = memory_->find(amcr_test::shapeName(id));
+    const amcr::Prototype& prototype = (*memory_)[p];
+    for (int view = 0; view < 8; ++view)
+    {
+      const bool affine = view % 2 == 1;
+      const double rotation = 2.0 * M_PI * unit(gen);
+      const double scale = 0.8 + 0.8 * unit(gen);  // image px per prototype-image px
+      const double anisotropy = affine ? 1.1 + 0.15 * unit(gen) : 1.0;
+      const double shear = affine ? 0.1 * (2.0 * unit(gen) - 1.0) : 0.0;
+      const amcr::Affine to_image =
+          amcr_test::makeAffine(amcr_test::prototypeCentre(), cv::Point2d(200, 200), rotation,
+                                scale * std::sqrt(anisotropy), scale / std::sqrt(anisotropy), shear);
+      cv::Mat image(400, 400, CV_8UC1, cv::Scalar(0));
+      amcr_test::fillPolygon(image, amcr_test::transformPoints(to_image, amcr_test::shapePolygon(id)), 255);
+      const amcr::RadialScanner scanner(amcr::prepareScanImage(image, params.blur_sigma), params.edge_threshold,
+                                        params.max_ray_length);
+      for (int trial = 0; trial < 40; ++trial)
+      {
+        const cv::Point table = prototype.interior()[gen() % prototype.interior().size()];
+        const cv::Matx23d& back = prototype.tableToOriginal();
+        const cv::Point2d original(back(0, 0) * table.x + back(0, 1) * table.y + back(0, 2),
+                                   back(1, 0) * table.x + back(1, 1) * table.y + back(1, 2));
+        const cv::Point2d at = amcr::applyAffine(to_image, original);
+        const double heading = 2.0 * M_PI * unit(gen);
+        amcr::RayHit rays[amcr::kFeatureRays];
+        amcr::scanFeatureRays(scanner, static_cast<float>(at.x), static_cast<float>(at.y),
+                              static_cast<float>(heading), rays);
+        const amcr::RaySignature s = amcr::raySignature(rays);
+        if (s.valid_rays() < amcr::kFeatureRays)
+          continue;
+        const int bin = amcr::angleToBin(heading - rotation);
+        const bool hit = hits(index_->query(s, kCandidates), p, table, bin, 2.0 * kStride, 2);
+        (affine ? tried_affine : tried_similar) += 1;
+        (affine ? found_affine : found_similar) += hit ? 1 : 0;
+      }
+    }
+  }
+  ASSERT_GT(tried_similar, 300);
+  ASSERT_GT(tried_affine, 300);
+  EXPECT_GE(found_similar, 0.7 * tried_similar) << found_similar << " of " << tried_similar;  // [0.86]
+  EXPECT_GE(found_affine, 0.7 * tried_affine) << found_affine << " of " << tried_affine;     // [0.87]
+}
+
+// The approximate search against the exhaustive reference on the same
+// queries: most of the exact k nearest are found, and the nearest found is
+// never nearer than the exact nearest (it is a true distance).
+TEST_F(ProposalIndexTest, ApproximateSearchAgreesWithExhaustiveSearch)
+{
+  std::mt19937_64 gen(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int exact_total = 0, shared_total = 0;
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    const amcr::Prototype& prototype = (*memory_)[gen() % memory_->size()];
+    const cv::Point at = prototype.interior()[gen() % prototype.interior().size()];
+    amcr::RaySignature s =
+        tableSignature(prototype, at.x, at.y, static_cast<int>(gen() % amcr::kDirectionBins), 1.3f);
+    for (float& d : s.distance)
+      d *= static_cast<float>(std::exp(0.2 * (2.0 * unit(gen) - 1.0)));  // not an indexed point
+    if (s.valid_rays() < amcr::kFeatureRays)
+      continue;
+    const auto approx = index_->query(s, kCandidates);
+    const auto exact = index_->queryExact(s, kCandidates);
+    ASSERT_EQ(exact.size(), static_cast<std::size_t>(kCandidates));
+    ASSERT_FALSE(approx.empty());
+    EXPECT_GE(approx.front().distance, exact.front().distance - 1e-4f);
+    for (const auto& e : exact)
+    {
+      ++exact_total;
+      for (const auto& a : approx)
+        if (a.prototype == e.prototype && a.x == e.x && a.y == e.y && a.bin == e.bin)
+        {
+          ++shared_total;
+          break;
+        }
+    }
+  }
+  ASSERT_GT(exact_total, 1000);
+  EXPECT_GE(shared_total, 0.85 * exact_total) << shared_total << " of " << exact_total;  // [0.93]
+}
+
+TEST_F(ProposalIndexTest, AnIncompleteScanProposesNothing)
+{
+  amcr::RaySignature s;
+  for (int k = 0; k < amcr::kFeatureRays; ++k)
+    s.distance[k] = 10.f + k;
+  s.distance[3] = 0.f;  // one ray met no edge
+  EXPECT_TRUE(index_->query(s, kCandidates).empty());
+  EXPECT_TRUE(index_->query(amcr::RaySignature(), kCandidates).empty());
+}
+
+TEST_F(ProposalIndexTest, TheDescriptorIgnoresScale)
+{
+  amcr::RaySignature s;
+  for (int k = 0; k < amcr::kFeatureRays; ++k)
+    s.distance[k] = 5.f + 3.f * k;
+  amcr::RaySignature twice = s;
+  for (float& d : twice.distance)
+    d *= 2.f;
+  amcr::RayDescriptor a, b;
+  ASSERT_TRUE(amcr::describeRays(s, a));
+  ASSERT_TRUE(amcr::describeRays(twice, b));
+  for (int k = 0; k < amcr::kFeatureRays; ++k)
+    EXPECT_NEAR(a[k], b[k], 1e-5);
+  const auto near = index_->query(s, 1), near_twice = index_->query(twice, 1);
+  ASSERT_EQ(near.size(), 1u);
+  ASSERT_EQ(near_twice.size(), 1u);
+  EXPECT_EQ(near[0].x, near_twice[0].x);
+  EXPECT_NEAR(near[0].log_scale - near_twice[0].log_scale, std::log(2.0), 1e-4);
+}
+
+/// A sliver: a triangle 180 px long and at most 2 px thick.
+cv::Mat sliverImage()
+{
+  cv::Mat image(200, 200, CV_8UC1, cv::Scalar(0));
+  amcr_test::fillPolygon(image, {{10, 100}, {190, 99}, {190, 101}}, 255, false);
+  return image;
+}
+
+TEST(ProposalIndexBadInput, APrototypeTooThinToIndexIsNamedAndLeftOut)
+{
+  amcr::PrototypeMemory memory;
+  const amcr::Params params;
+  memory.add("arrow", amcr_test::drawPrototype(ShapeId::kArrow), params);
+  memory.add("sliver", sliverImage(), params);
+  std::vector<std::string> warnings;
+  const amcr::ProposalIndex index(memory, 16, {}, [&](const std::string& line) { warnings.push_back(line); });
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("'sliver'"), std::string::npos) << warnings[0];
+  ASSERT_EQ(index.leftOut(), std::vector<std::string>{"sliver"});
+  EXPECT_GT(index.size(), 500u);  // the arrow is indexed
+}
+
+TEST(ProposalIndexBadInput, AnIndexWithoutUsableEntriesIsAnError)
+{
+  amcr::PrototypeMemory memory;
+  memory.add("sliver", sliverImage(), amcr::Params());
+  EXPECT_THROW(amcr::ProposalIndex(memory, 16), amcr::MemoryError);
+  EXPECT_THROW(amcr::ProposalIndex(memory, 0), amcr::ParameterError);
+}
+}  // namespace
