@@ -74,6 +74,8 @@ TEST(Params, OutOfRangeValuesNameTheParameter)
       {"m_reseed_fraction", [](amcr::Params& p) { p.m_reseed_fraction = -0.2; }, "share < 0"},
       {"injection_fraction", [](amcr::Params& p) { p.injection_fraction = 3.0; }, "share > 1"},
       {"decision_threshold", [](amcr::Params& p) { p.decision_threshold = 1.2; }, "score > 1"},
+      {"working_resolution", [](amcr::Params& p) { p.working_resolution = -1; }, "size < 0"},
+      {"working_resolution", [](amcr::Params& p) { p.working_resolution = 4001; }, "size > 4000"},
       {"min_object_size", [](amcr::Params& p) { p.min_object_size = -1.0; }, "size < 0"},
       {"sigma_w", [](amcr::Params& p) { p.sigma_w = 0.0; }, "sigma = 0"},
       {"sigma_w", [](amcr::Params& p) { p.sigma_w = -3.0; }, "sigma < 0"},

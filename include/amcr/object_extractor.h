@@ -50,4 +50,8 @@ std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter);
 /// affine refined on the image's edges and verified against it, and the
 /// report with its hysteresis for tracked objects (spec "Output", "Tracking").
 Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks);
+/// The same with the smallest object in px of the scanned image (the
+/// recognizer's working image) in place of params.min_object_size.
+Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks,
+                          double min_object_size);
 }  // namespace amcr

@@ -51,18 +51,23 @@ struct Params
   // Prototype memory.
   int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]
 
-  // Radial edge scans in the input image.
-  double max_ray_length = 200.0;  ///< longest ray, input px [10, 4000]
+  // Radial edge scans in the working image: the input reduced to
+  // working_resolution (working_scale.h). Every length in px below is of the
+  // working image, except min_object_size (input px).
+  double max_ray_length = 200.0;  ///< longest ray, working px [10, 4000]
   double edge_threshold = 40.0;   ///< grey-level step over 2 px that counts as an edge [1, 255]
-  double blur_sigma = 1.0;        ///< Gaussian smoothing before scanning, px [0, 10]
+  double blur_sigma = 1.0;        ///< Gaussian smoothing before scanning, working px [0, 10]
+  /// Longer side of the working image, input px [0, 4000]; a larger input is
+  /// reduced to it (never enlarged), and results come back in input px; 0 = the input's own size.
+  int working_resolution = 640;
 
   // Observation model (paper eqs. 5-6).
   LikelihoodForm likelihood_form = LikelihoodForm::kPaper;
   DeviationSpace deviation_space = DeviationSpace::kImage;
-  double sigma_w = 5.0;           ///< std. dev. of a ray's deviation, px (0, 1000]; paper 10
+  double sigma_w = 5.0;           ///< std. dev. of a ray's deviation, working px (prototype px with deviation_space prototype) (0, 1000]; paper 10
   double p_outlier = 0.1;         ///< probability that a ray is an outlier [0, 1]; paper 0.1
   double p_invalid = 0.1;         ///< probability of an invalid ray [0, 1]; paper 0.1
-  double min_triangle_area = 20;  ///< smaller affine triangles are degenerate, px^2 [0, 1e6]
+  double min_triangle_area = 20;  ///< smaller affine triangles are degenerate, working px^2 [0, 1e6]
   double max_affine_scale = 8.0;  ///< largest accepted scale ratio of A (either way) [1, 100]
   RayCorrespondence ray_correspondence = RayCorrespondence::kAffine;
   int affine_refits = 0;          ///< re-estimates of A from affine-corrected triangle rays [0, 5]
@@ -71,7 +76,7 @@ struct Params
   double motion_noise_shape = 0.05;  ///< M-particle view-shape noise per iteration [0, 1]
 
   // Motion model (paper 4.2) and exploration policy (paper 4.3).
-  double v_step = 4.0;                   ///< forward step of a V-particle per iteration, input px [0, 100]
+  double v_step = 4.0;                   ///< forward step of a V-particle per iteration, working px [0, 100]
   double motion_noise_translation = 1.5; ///< M-particle translation noise, prototype px [0, 100]
   double motion_noise_rotation = 0.08;   ///< M-particle rotation noise, rad [0, 3.15]
   double reflection_jitter = 0.3;        ///< random turn added at a reflection, rad [0, 3.15]
@@ -87,17 +92,17 @@ struct Params
   // Result extraction.
   double cluster_radius = 6.0;        ///< M-cluster radius, prototype px [0.5, 100]
   double cluster_min_share = 0.3;     ///< share of a V's M-particles its cluster needs [0, 1]
-  double group_tolerance = 8.0;       ///< V-particles agree when they map within this, input px [0.5, 200]
+  double group_tolerance = 8.0;       ///< V-particles agree when they map within this, working px [0.5, 200]
   int min_support = 3;                ///< V-particles an object needs [1, 5000]
   int refine_iterations = 5;          ///< outline-to-edge refinement passes of the affine [0, 100]
-  double refine_search = 6.0;         ///< search along the outline normal for an edge, input px [0, 100]
+  double refine_search = 6.0;         ///< search along the outline normal for an edge, working px [0, 100]
   bool fit_homography = true;         ///< after the affine, fit a homography and use it when the outline demands it
   double decision_threshold = 0.75;   ///< smallest score reported [0, 1]
   double min_object_size = 64.0;      ///< smallest object reported: longer side of its outline's box, input px [0, 4000]
 
   // Tracking (spec "Tracking") and the time per frame.
   bool optical_flow = true;        ///< V-particles ride pyramidal Lucas-Kanade flow between frames
-  int flow_window = 21;            ///< side of the Lucas-Kanade window, px [5, 101]
+  int flow_window = 21;            ///< side of the Lucas-Kanade window, working px [5, 101]
   int flow_levels = 3;             ///< pyramid levels above the frame [0, 8]
   double flow_max_error = 40.0;    ///< a flow whose mean grey-level difference over the window exceeds this fails [1, 255]
   double frame_budget_ms = 0.0;    ///< time cap per frame, ms; 0 = a full iteration every frame [0, 10000]

@@ -22,6 +22,7 @@
 #include "amcr/particles.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/recognition_result.h"
+#include "amcr/working_scale.h"
 
 namespace amcr
 {
@@ -59,17 +60,23 @@ public:
   /// frame (params.optical_flow), then one iteration of paper 3.6 runs, or,
   /// under params.frame_budget_ms, as much of it as fits (the rest follows
   /// in the next frames). A change of image size re-seeds the V-particles.
+  /// An input larger than params.working_resolution is reduced to it first
+  /// (working_scale.h); the result is in input px all the same.
   RecognitionResult step(const cv::Mat& image);
 
   /// Moves every V-particle by an external displacement (optical flow) without
   /// changing its correspondence: its M-particles stay where they are.
-  /// `displacement` has one entry per V-particle (InputError otherwise).
+  /// `displacement` has one entry per V-particle (InputError otherwise), in
+  /// input px of the last step's image.
   void moveVParticles(const std::vector<cv::Point2f>& displacement);
 
   // State, for overlays and diagnostics.
   const Params& params() const { return params_; }
   const PrototypeMemory& memory() const { return filter_.memory(); }
+  /// The V-particles as the filter keeps them: in working px (view() gives input px).
   const std::vector<VParticle>& vParticles() const { return filter_.vParticles(); }
+  /// The map between the last step's input and the image the filter worked on.
+  const WorkingScale& workingScale() const { return scale_; }
   const MParticleSet& mParticles() const { return filter_.mParticles(); }
   int mParticlesPerV() const { return filter_.mParticlesPerV(); }
   /// The filter itself (M-particle ranges, the proposal index and what its
@@ -99,6 +106,7 @@ private:
   FrameBudget budget_;
   long iteration_ = 0;
   int next_v_ = 0;  // the V-particle the current round goes on with (frame budget)
-  std::vector<FlowTrail> trails_;  // per V-particle, of the last step's flow (empty: none)
+  std::vector<FlowTrail> trails_;  // per V-particle, of the last step's flow (empty: none), working px
+  WorkingScale scale_;             // of the last step (empty sizes before the first)
 };
 }  // namespace amcr

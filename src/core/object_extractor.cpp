@@ -274,9 +274,17 @@ std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter)
 
 Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks)
 {
+  return extractObjects(filter, scanner, tracks, filter.params().min_object_size);
+}
+
+Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks,
+                          double min_object_size)
+{
   Extraction extraction;
   extraction.clusters = filterClusters(filter);
-  const ExtractionInput in{filter, scanner, extraction.clusters, filter.params(), filter.memory()};
+  Params params = filter.params();
+  params.min_object_size = min_object_size;
+  const ExtractionInput in{filter, scanner, extraction.clusters, params, filter.memory()};
   std::vector<Candidate> candidates = fitCandidates(in, fitStarts(in, tracks));
   extraction.feedback.evidence = verificationEvidence(in, candidates);
   extraction.feedback.leading = leadingHypotheses(in, candidates);

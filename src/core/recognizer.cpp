@@ -4,6 +4,7 @@
 #include "amcr/object_extractor.h"
 #include "amcr/radial_scan.h"
 #include "amcr/resource_bounds.h"
+#include "amcr/working_scale.h"
 
 namespace amcr
 {
@@ -54,14 +55,21 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
 {
   const double start = budget_.now();
   checkImageBound(image.cols, image.rows, "the input image");  // before any work on it
-  const cv::Mat grey = toGray8(image);  // throws InputError before any state changes
+  const cv::Mat input_grey = toGray8(image);  // throws InputError before any state changes
+  // The filter works on the working image (px parameters are its px) and
+  // reports in input px: the same scene at any resolution meets the rays,
+  // steps and seeding at the same size (issue 14, item 5).
+  const cv::Size previous_input = scale_.input;
+  scale_ = chooseWorkingScale(input_grey.size(), params_.working_resolution);
+  const cv::Mat grey = toWorkingImage(input_grey, scale_);
   const cv::Mat scan_image = prepareScanImage(grey, params_.blur_sigma);
   const RadialScanner scanner(scan_image, params_.edge_threshold, params_.max_ray_length);
   RecognitionResult result;
 
   // A new image size (or an empty filter) starts over; else the V-particles
-  // ride the optical flow from the previous frame.
-  const bool fresh = filter_.needsSeeding(scan_image.size());
+  // ride the optical flow from the previous frame. Two inputs may share a
+  // working size: the input's size decides too.
+  const bool fresh = filter_.needsSeeding(scan_image.size()) || input_grey.size() != previous_input;
   if (fresh)
   {
     filter_.seed(scanner);
@@ -83,7 +91,9 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
 
   // The result extraction reads the filter; the filter takes its feedback.
   const double extraction_start = budget_.now();
-  Extraction extraction = extractObjects(filter_, scanner, tracker_.tracks());
+  // min_object_size is in input px (what a user measures in the image).
+  Extraction extraction =
+      extractObjects(filter_, scanner, tracker_.tracks(), params_.min_object_size * scale_.factor());
   filter_.addEvidence(extraction.feedback.evidence);
   filter_.setLeading(std::move(extraction.feedback.leading));
   for (const VParticleCluster& c : extraction.clusters)
@@ -91,7 +101,9 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   if (round_done && iteration_ % params_.v_resample_interval == 0)
     trails_ = inherit(trails_, filter_.resampleV(scanner, extraction.feedback.object_v_particles));
   result.objects = std::move(extraction.objects);
-  tracker_.assign(result.objects);
+  tracker_.assign(result.objects);  // the tracks stay in working px, as the filter
+  if (!scale_.identity())
+    scaleResult(result, scale_.toInput());
   if (budget_.limited())
     budget_.recordExtraction(budget_.now() - extraction_start);
 
@@ -141,17 +153,24 @@ int Recognizer::followFlow(const RadialScanner& scanner)
 FilterView Recognizer::view() const
 {
   FilterView view;
+  const Affine to_input = scale_.toInput();  // the overlay draws on the input
+  const auto input = [&](const cv::Point2f& p) {
+    return scale_.identity() ? p : cv::Point2f(applyAffine(to_input, cv::Point2d(p)));
+  };
   const std::vector<VParticle>& v = filter_.vParticles();
   const std::vector<VParticleCluster> clusters = filterClusters(filter_);
   for (std::size_t i = 0; i < v.size(); ++i)
   {
     VParticleView particle;
-    particle.position = cv::Point2f(v[i].x, v[i].y);
+    particle.position = input(cv::Point2f(v[i].x, v[i].y));
     particle.theta = v[i].theta;
     if (isConverged(clusters[i], params_.cluster_min_share))
       particle.dominant_prototype = clusters[i].prototype;
     if (i < trails_.size())
+    {
       particle.trail = trails_[i];
+      particle.trail.from = input(particle.trail.from);
+    }
     view.v.push_back(particle);
   }
   const MParticleSet& m = filter_.mParticles();
@@ -165,5 +184,15 @@ FilterView Recognizer::view() const
   return view;
 }
 
-void Recognizer::moveVParticles(const std::vector<cv::Point2f>& displacement) { filter_.displace(displacement); }
+void Recognizer::moveVParticles(const std::vector<cv::Point2f>& displacement)
+{
+  if (scale_.identity())
+    return filter_.displace(displacement);
+  // Input px -> working px: the linear part of the map only (a displacement).
+  const Affine to_working = scale_.toWorking();
+  std::vector<cv::Point2f> working = displacement;
+  for (cv::Point2f& d : working)
+    d = cv::Point2f(static_cast<float>(to_working(0, 0) * d.x), static_cast<float>(to_working(1, 1) * d.y));
+  filter_.displace(working);
+}
 }  // namespace amcr
