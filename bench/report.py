@@ -705,6 +705,9 @@ def summary_section(everything, updates=None, growth=None):
                 high, 100 * HD_AIM, low, fmt(b, "pct"), fmt(a, "pct"), "met" if b >= a - HD_AIM - 1e-9 else "not met"))
         elif fa is not None and fb is not None and not get(high, "amcr", "top1"):
             later.append("- false positives per frame on `%s` against `%s`: **%.3f against %.3f**" % (high, low, fb, fa))
+        elif b is not None or fb is not None:
+            later.append("- `%s`: %s**%s** false positives per frame (`%s` is not in this run: run both to compare)"
+                         % (high, "top-1 at frame 60 **%s**, " % fmt(b, "pct") if b is not None else "", fmt(fb, ""), low))
     if later:
         lines += ["", "The aims of issue 14 against these figures:", ""] + later
     return "\n".join(lines)
