@@ -2,7 +2,10 @@
 // (as bench/make_sequences writes it) and writes what each reports, frame by frame.
 //
 //   amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght]
-//                 [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N]
+//                 [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N] [--prototypes DIR]
+//
+// The memory is <suite>/prototypes unless --prototypes names another folder (the `memory-growth`
+// suite runs the same sequences once per memory, prototypes-3 ... prototypes-70).
 //
 // Writes <out>/<sequence>.<method>.jsonl, one line per frame run:
 //   {"frame": k, "time_ms": t, "objects": [{"label": ..., "score": s,
@@ -42,7 +45,7 @@ namespace
 {
 struct Options
 {
-  std::string suite, out, config = "config/amcr.yaml";
+  std::string suite, out, config = "config/amcr.yaml", prototypes;  // prototypes: default <suite>/prototypes
   std::vector<std::string> methods = {"amcr", "orb", "hu", "ght"};
   std::uint64_t seed = 1;
   std::vector<int> ght_frames = {9, 29, 59, -1};
@@ -63,7 +66,7 @@ std::vector<std::string> split(const std::string& text)
 {
   std::cerr << "amcr_evaluate: " << error << "\n"
             << "usage: amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght]\n"
-            << "                     [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N]\n";
+            << "                     [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N] [--prototypes DIR]\n";
   std::exit(2);
 }
 
@@ -94,11 +97,15 @@ Options parse(int argc, char** argv)
     }
     else if (key == "--ght-sequences")
       o.ght_sequences = std::stoi(value);
+    else if (key == "--prototypes")
+      o.prototypes = value;
     else
       usage("unknown option " + key);
   }
   if (o.suite.empty() || o.out.empty())
     usage("--suite and --out are required");
+  if (o.prototypes.empty())
+    o.prototypes = (fs::path(o.suite) / "prototypes").string();
   return o;
 }
 
@@ -172,7 +179,7 @@ std::unique_ptr<Method> makeMethod(const std::string& name, const Options& o, co
     amcr::Params params = amcr::loadParams(o.config);
     params.seed = o.seed;
     auto memory = std::make_shared<amcr::PrototypeMemory>(
-        amcr::PrototypeMemory::loadDirectory((fs::path(o.suite) / "prototypes").string(), params));
+        amcr::PrototypeMemory::loadDirectory(o.prototypes, params));
     init = "\"table_bytes\": " + std::to_string(memory->tableBytes()) + ", \"prototypes\": " +
            std::to_string(memory->size()) + ", \"num_v_particles\": " + std::to_string(params.num_v_particles) +
            ", \"m_particles_per_prototype\": " + std::to_string(params.m_particles_per_prototype);
@@ -193,9 +200,9 @@ int main(int argc, char** argv)
   const Options o = parse(argc, argv);
   try
   {
-    const std::vector<PrototypeImage> prototypes = loadPrototypes((fs::path(o.suite) / "prototypes").string());
+    const std::vector<PrototypeImage> prototypes = loadPrototypes(o.prototypes);
     if (prototypes.empty())
-      usage("no prototypes in " + o.suite + "/prototypes");
+      usage("no prototypes in " + o.prototypes);
     std::vector<fs::path> sequences;
     for (const auto& entry : fs::directory_iterator(o.suite))
       if (fs::exists(entry.path() / "truth.json"))

@@ -25,6 +25,13 @@ Definitions (frames are numbered from 1):
   (labels other than the target's, over every frame run), reports of the target at a wrong place per
   scored frame, and the median over scored frames of the mean corner error of the best-scored report
   of the target.
+- `memory-growth` (results/memory-growth/memory-<n>/, one run per memory of n prototypes on the same
+  sequences): per memory the median time per frame, its ratio to the 3-prototype memory's, top-1 at
+  frame 60 (at the last frame when shorter) and the median over sequences of the frames to the first
+  correct report (the first frame whose best-scored report has the target's label; never = inf).
+- `paper-hd`, `clutter-only-hd` (the same frames at 1280x720): their figures beside those of `paper`
+  and `clutter-only` of the same run; differences in points; corner errors in each suite's own pixels
+  (1280x720 ones are 1.5x as large for the same error on the scene).
 """
 
 import argparse
@@ -38,7 +45,12 @@ import cv2
 import numpy as np
 
 METHODS = ["amcr", "orb", "hu", "ght"]
-SUITES = ["paper", "mpeg7-70", "within-class", "similar", "clutter-only", "two-objects", "oblique", "real-camera"]
+SUITES = ["paper", "mpeg7-70", "within-class", "similar", "clutter-only", "two-objects", "oblique", "real-camera",
+          "paper-hd", "clutter-only-hd"]
+GROWTH = "memory-growth"
+HD_PAIRS = [("paper", "paper-hd"), ("clutter-only", "clutter-only-hd")]  # 640x480 suite, its 1280x720 one
+GROWTH_AIM = 1.5  # issue 14: time per frame with 70 prototypes at most 1.5x that with 3
+HD_AIM = 0.10  # issue 14: 1280x720 top-1 within 10 points of 640x480
 ANISOTROPY_BANDS = [(1.5, 2.0), (2.0, 2.5), (2.5, 3.0)]
 RIGHT_PLACE = 0.10  # real-camera: every corner within this share of the target's image diagonal
 METHOD_NAMES = {"amcr": "AMCR", "orb": "ORB+RANSAC", "hu": "Hu moments", "ght": "GHT Guil"}
@@ -110,9 +122,9 @@ def held_from(frames, total):
     return start
 
 
-def suite_metrics(out, suite, methods):
+def suite_metrics(out, suite, methods, res_dir=None):
     seq_dir = os.path.join(out, "sequences", suite)
-    res_dir = os.path.join(out, "results", suite)
+    res_dir = res_dir or os.path.join(out, "results", suite)
     sizes = {}
     for p in glob.glob(os.path.join(seq_dir, "prototypes", "*.png")):
         image = cv2.imread(p, cv2.IMREAD_GRAYSCALE)
@@ -154,6 +166,10 @@ def suite_metrics(out, suite, methods):
             for f in all_frames:
                 curve.setdefault(f["frame"], []).append(f["top1"])
             m["curve"] = {k: sum(v) / len(v) for k, v in sorted(curve.items())}
+            # Frames to the first correct report: the first frame whose top-1 is right (inf: never).
+            firsts = [next((f["frame"] for f in frames if f["top1"]), math.inf) for frames, _ in per_seq.values()]
+            m["first_correct_median"] = median(firsts)
+            m["first_correct"] = firsts
         m["fp_per_frame"] = mean([f["false_positives"] for f in all_frames])
         m["affine_median"] = median([e for f in all_frames for e in f["affine_errors"]])
         m["affine_last_median"] = median([f["affine_errors"][0] for frames, _ in per_seq.values()
@@ -299,6 +315,88 @@ def anisotropy_table(out, suite):
     return "\n".join(lines) + "\n"
 
 
+def growth_metrics(out):
+    """memory size -> AMCR's metrics on `memory-growth` with that memory."""
+    found = {}
+    for d in glob.glob(os.path.join(out, "results", GROWTH, "memory-*")):
+        n = os.path.basename(d).split("-", 1)[1]
+        if n.isdigit():
+            metrics, _ = suite_metrics(out, GROWTH, ["amcr"], res_dir=d)
+            if "amcr" in metrics:
+                found[int(n)] = metrics["amcr"]
+    return dict(sorted(found.items()))
+
+
+def growth_ratio(growth):
+    """(smallest, largest, ratio of their median times per frame), or None."""
+    if len(growth) < 2:
+        return None
+    small, large = min(growth), max(growth)
+    a, b = growth[small]["time_median_ms"], growth[large]["time_median_ms"]
+    return (small, large, b / a) if a and b is not None else None
+
+
+def growth_section(growth):
+    small = min(growth)
+    base = growth[small]["time_median_ms"]
+    m0 = next(iter(growth.values()))
+    at = min(60, m0["last_frame"])
+    lines = ["AMCR on the same %d sequences (%d frames) with memories of %s prototypes (nested; the "
+             "targets are in the smallest): time per frame and recognition as the memory grows." % (
+                 m0["sequences"], m0["last_frame"], ", ".join(map(str, growth))), "",
+             "| memory (prototypes) | time per frame, median (ms) | ratio to %d prototypes | time per frame, mean "
+             "(ms) | top-1 at frame %d | median frames to the first correct report | first correct report, per "
+             "sequence | set-up (s) |" % (small, at),
+             "|---|---|---|---|---|---|---|---|"]
+    for n, m in growth.items():
+        ratio = m["time_median_ms"] / base if base else None
+        lines.append("| %d | %s | %s | %s | %s | %s | %s | %s |" % (
+            n, fmt(m["time_median_ms"], "ms"), "n/a" if ratio is None else "%.2fx" % ratio,
+            fmt(m["time_mean_ms"], "ms"), fmt(top1_at(m, 60), "pct"), fmt(m.get("first_correct_median"), "frames"),
+            ", ".join(fmt(f, "frames") for f in m.get("first_correct", [])),
+            fmt(m.get("init", {}).get("init_ms", 0) / 1000, "px")))
+    r = growth_ratio(growth)
+    if r:
+        lines += ["", "Time per frame with %d prototypes against %d: **%.2fx** (issue 14's aim: at most %.1fx: %s)."
+                  % (r[1], r[0], r[2], GROWTH_AIM, "met" if r[2] <= GROWTH_AIM else "not met")]
+    return "\n".join(lines) + "\n"
+
+
+def hd_section(everything):
+    """The 1280x720 suites beside their 640x480 ones (AMCR)."""
+    lines = ["AMCR on the same frames at 640x480 and at 1280x720 (`*-hd`: scaled 1.5x and centred, see "
+             "Suites); difference = 1280x720 - 640x480:", "",
+             "| suite | figure | 640x480 | 1280x720 | difference |", "|---|---|---|---|---|"]
+    for low, high in HD_PAIRS:
+        a = everything.get(low, {}).get("amcr")
+        b = everything.get(high, {}).get("amcr")
+        if not b:
+            continue
+        if not a:
+            lines.append("| %s / %s | | not in this run (add `%s` to --suites) | | |" % (low, high, low))
+        rows = []
+        if b.get("top1"):
+            rows += [("top-1 at frame %d" % min(60, b["last_frame"]), lambda m: top1_at(m, 60), "pct"),
+                     ("share with a held correct decision", lambda m: m.get("held_share"), "pct"),
+                     ("median frames to the first correct report", lambda m: m.get("first_correct_median"), "frames")]
+        rows.append(("false positives per frame", lambda m: m["fp_per_frame"], ""))
+        if b.get("top1"):
+            rows.append(("affine corner error, median (px of the frame)", lambda m: m["affine_median"], "px"))
+        rows.append(("time per frame, median (ms)", lambda m: m["time_median_ms"], "ms"))
+        for title, get, kind in rows:
+            va, vb = (get(a) if a else None), get(b)
+            diff = ""
+            if va is not None and vb is not None and va != math.inf and vb != math.inf:
+                if kind == "pct":
+                    diff = "%+.0f points" % (100 * (vb - va))
+                elif kind == "ms":
+                    diff = "%.2fx" % (vb / va) if va else ""
+                elif kind == "":
+                    diff = "%+.3f" % (vb - va)
+            lines.append("| %s | %s | %s | %s | %s |" % (high, title, fmt(va, kind), fmt(vb, kind), diff))
+    return "\n".join(lines) + "\n"
+
+
 def fmt(value, kind):
     if value is None:
         return "n/a"
@@ -439,7 +537,14 @@ another instance shown; `similar`: the 3 birds closest in Hu moments; `clutter-o
 memory, no memory shape in view; `two-objects`: two of the paper memory at once, in the two
 halves of the frame. `oblique`: the `paper` sequences (same seeds, memory, clutter, motion) with
 the target seen obliquely: squashed along an image axis (random per sequence) to anisotropy
-1.5-3 (48-70 degrees off the normal), area kept, no shear. Frames are numbered from 1.
+1.5-3 (48-70 degrees off the normal), area kept, no shear. `memory-growth` (issue 14): 6
+sequences (2 with --quick) whose targets are 3 fixed classes, run once per memory of 3, 17, 35 and
+70 prototypes (nested: 3 of the paper's 17, the 17, the 17 and 18 other classes, all 70; fixed,
+whatever the seed); distractors are random blobs. `paper-hd` and `clutter-only-hd` (issue 14): the
+`paper` and `clutter-only` frames (same seeds, draws and noise) resampled 1.5x (bilinear) to
+960x720 and centred in 1280x720, the 160 px left and right showing the photo mirrored (no shape);
+the truth is the 640x480 truth composed with x' = 1.5 x + 160.25, y' = 1.5 y + 0.25, exact.
+Frames are numbered from 1.
 """
 
 REAL_TEXT = """\
@@ -536,7 +641,7 @@ def best_updates(out):
     return best.get("items_per_second", 0), best["name"]
 
 
-def summary_section(everything, updates=None):
+def summary_section(everything, updates=None, growth=None):
     """One table over the suites, and the aims of the issue against the figures."""
     lines = ["## Summary", "",
              "Top-1 at frame 60 (at the last frame where sequences are shorter; GHT: at the frames it ran), "
@@ -586,6 +691,25 @@ def summary_section(everything, updates=None):
                     "whole iteration counted) (%s)" % (updates[0] / 1e6, updates[1],
                                                       "met" if updates[0] >= 1e7 else "not met"))
     lines += ["", "The aims of issue 5 against these figures:", ""] + aims
+    later = []
+    r = growth_ratio(growth or {})
+    if r:
+        later.append("- time per frame from %d to %d prototypes (`%s`, median) grows at most %.1fx: **%.2fx** (%s)"
+                     % (r[0], r[1], GROWTH, GROWTH_AIM, r[2], "met" if r[2] <= GROWTH_AIM else "not met"))
+    for low, high in HD_PAIRS:
+        a = top1_at(everything.get(low, {}).get("amcr", {}), 60)
+        b = top1_at(everything.get(high, {}).get("amcr", {}), 60)
+        fa, fb = get(low, "amcr", "fp_per_frame"), get(high, "amcr", "fp_per_frame")
+        if a is not None and b is not None:
+            later.append("- top-1 at frame 60 on `%s` within %d points of `%s`: **%s against %s** (%s)" % (
+                high, 100 * HD_AIM, low, fmt(b, "pct"), fmt(a, "pct"), "met" if b >= a - HD_AIM - 1e-9 else "not met"))
+        elif fa is not None and fb is not None and not get(high, "amcr", "top1"):
+            later.append("- false positives per frame on `%s` against `%s`: **%.3f against %.3f**" % (high, low, fb, fa))
+        elif b is not None or fb is not None:
+            later.append("- `%s`: %s**%s** false positives per frame (`%s` is not in this run: run both to compare)"
+                         % (high, "top-1 at frame 60 **%s**, " % fmt(b, "pct") if b is not None else "", fmt(fb, ""), low))
+    if later:
+        lines += ["", "The aims of issue 14 against these figures:", ""] + later
     return "\n".join(lines)
 
 
@@ -607,7 +731,11 @@ def main():
     everything = {}
     found = [os.path.basename(d) for d in glob.glob(os.path.join(args.out, "results", "*"))]
     real = {}
+    growth = {}
     for suite in [s for s in SUITES if s in found] + sorted(s for s in found if s not in SUITES):
+        if suite == GROWTH:
+            growth = growth_metrics(args.out)
+            continue
         if suite == "real-camera":
             real = real_camera_metrics(args.out, suite, METHODS)
             if real:
@@ -625,16 +753,20 @@ def main():
         if plt and has_target:
             plot_accuracy(plt, suite, metrics, os.path.join(args.out, "plots", "accuracy_%s.png" % suite))
             parts += ["![%s](plots/accuracy_%s.png)" % (suite, suite), ""]
+    if any(high in everything for _, high in HD_PAIRS):
+        parts += ["## 1280x720 beside 640x480", "", hd_section(everything), ""]
+    if growth:
+        parts += ["## %s" % GROWTH, "", growth_section(growth), ""]
     speed = speed_section(args.out, plt)
     updates = best_updates(args.out)
-    parts[4:4] = [summary_section(everything, updates), ""]
+    parts[4:4] = [summary_section(everything, updates, growth), ""]
     parts += ["## Speed", "", speed, latency_section(args.out)]
     if plt is None:
         parts.append("(plots skipped: python3-matplotlib is not installed)")
     with open(os.path.join(args.out, "report.md"), "w") as f:
         f.write("\n".join(parts) + "\n")
     # The short version: the run, the summary, the speed (for docs/benchmark-latest.md).
-    short = ["# AMCR benchmark: summary", "", args.header, "", summary_section(everything, updates), "",
+    short = ["# AMCR benchmark: summary", "", args.header, "", summary_section(everything, updates, growth), "",
              "## Speed", "", speed.replace(
                  "![time per iteration](plots/time_per_iteration.png)",
                  "The plot of time per iteration against particle count is `plots/time_per_iteration.png`"
@@ -642,7 +774,8 @@ def main():
     with open(os.path.join(args.out, "summary.md"), "w") as f:
         f.write("\n".join(short) + "\n")
     with open(os.path.join(args.out, "metrics.json"), "w") as f:
-        json.dump(dict(everything, **({"real-camera": real} if real else {})), f, indent=1, default=str)
+        json.dump(dict(everything, **({"real-camera": real} if real else {}),
+                       **({GROWTH: {str(n): m for n, m in growth.items()}} if growth else {})), f, indent=1, default=str)
     print("report: %s" % os.path.join(args.out, "report.md"))
 
 
