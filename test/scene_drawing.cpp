@@ -400,14 +400,16 @@ cv::Mat drawRandomSilhouette(std::uint64_t seed)
 {
   std::mt19937_64 gen(seed);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
-  const int n = 6 + static_cast<int>(u01(gen) * 6.0);
+  // Spiky: 12-18 vertices alternating outer and inner radii, unlike the
+  // clutter's blobs of 5-9 vertices, ellipses and boxes (randomShape).
+  const int n = 12 + 2 * static_cast<int>(u01(gen) * 4.0);
   const double r = 0.42 * kPrototypeImageSize;
   const cv::Point2d c = prototypeCentre();
   std::vector<cv::Point2d> polygon;
   for (int i = 0; i < n; ++i)
   {
-    const double a = 2.0 * M_PI * (i + 0.6 * (u01(gen) - 0.5)) / n;
-    const double rr = r * (0.35 + 0.65 * u01(gen));
+    const double a = 2.0 * M_PI * (i + 0.5 * (u01(gen) - 0.5)) / n;
+    const double rr = r * (i % 2 == 0 ? 0.7 + 0.3 * u01(gen) : 0.3 + 0.3 * u01(gen));
     polygon.emplace_back(c.x + rr * std::cos(a), c.y + rr * std::sin(a));
   }
   cv::Mat image(kPrototypeImageSize, kPrototypeImageSize, CV_8UC1, cv::Scalar(0));

@@ -49,9 +49,9 @@ std::vector<cv::Point2d> shapePolygon(ShapeId id);
 std::shared_ptr<const amcr::PrototypeMemory> drawnMemory(const std::vector<ShapeId>& shapes,
                                                          const amcr::Params& params = amcr::Params());
 
-/// A further silhouette for larger memories: a random star-shaped polygon of
-/// 6-11 vertices drawn from `seed`, filled at 255 on 0, kPrototypeImageSize
-/// square (none of the ShapeId shapes; two seeds give different shapes).
+/// A further silhouette for larger memories: a random spiky polygon of
+/// 12-18 vertices drawn from `seed` (unlike the ShapeId shapes and the
+/// clutter's random shapes), filled at 255 on 0, kPrototypeImageSize square.
 cv::Mat drawRandomSilhouette(std::uint64_t seed);
 
 /// The prototype image: kPrototypeImageSize x kPrototypeImageSize, CV_8UC1,

@@ -20,8 +20,8 @@ namespace
 {
 using amcr_test::ShapeId;
 
-constexpr int kStride = 4;       // table px, the default index_stride
-constexpr int kCandidates = 16;  // the default index_candidates
+constexpr int kStride = 6;       // table px, the default index_stride
+constexpr int kCandidates = 64;  // the default index_candidates
 
 /// Angular distance in bins, modulo a turn.
 int binDistance(int a, int b)
@@ -94,7 +94,7 @@ TEST_F(ProposalIndexTest, FindsTheTablesOwnScansAtAnyScale)
     }
   }
   ASSERT_GT(tried, 800);
-  EXPECT_GE(found, 0.8 * tried) << found << " of " << tried;  // [0.87]
+  EXPECT_GE(found, 0.8 * tried) << found << " of " << tried;  // [0.88]
 }
 
 // The prototypes drawn into an image under random similarities and moderate
@@ -148,14 +148,14 @@ TEST_F(ProposalIndexTest, FindsDrawnShapesUnderSimilaritiesAndModerateAffines)
   }
   ASSERT_GT(tried_similar, 300);
   ASSERT_GT(tried_affine, 300);
-  EXPECT_GE(found_similar, 0.7 * tried_similar) << found_similar << " of " << tried_similar;  // [0.86]
-  EXPECT_GE(found_affine, 0.7 * tried_affine) << found_affine << " of " << tried_affine;     // [0.87]
+  EXPECT_GE(found_similar, 0.8 * tried_similar) << found_similar << " of " << tried_similar;  // [0.90]
+  EXPECT_GE(found_affine, 0.8 * tried_affine) << found_affine << " of " << tried_affine;     // [0.91]
 }
 
-// The approximate search against the exhaustive reference on the same
-// queries: most of the exact k nearest are found, and the nearest found is
-// never nearer than the exact nearest (it is a true distance).
-TEST_F(ProposalIndexTest, ApproximateSearchAgreesWithExhaustiveSearch)
+// The k-d tree search against the exhaustive reference on the same
+// queries: the same k nearest (up to ties), and the nearest found is never
+// nearer than the exact nearest (it is a true distance).
+TEST_F(ProposalIndexTest, TreeSearchAgreesWithExhaustiveSearch)
 {
   std::mt19937_64 gen(5);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -187,7 +187,7 @@ TEST_F(ProposalIndexTest, ApproximateSearchAgreesWithExhaustiveSearch)
     }
   }
   ASSERT_GT(exact_total, 1000);
-  EXPECT_GE(shared_total, 0.85 * exact_total) << shared_total << " of " << exact_total;  // [0.93]
+  EXPECT_GE(shared_total, 0.98 * exact_total) << shared_total << " of " << exact_total;  // [0.999]
 }
 
 TEST_F(ProposalIndexTest, AnIncompleteScanProposesNothing)

@@ -38,15 +38,15 @@ struct Params
   int m_particles_per_prototype = 60;  ///< M-particles per prototype per V [1, 5000]; paper 60
   /// M-particle budget of a V-particle, shared among the prototypes
   /// [0, 100000]; 0 = the paper's m_particles_per_prototype per prototype.
-  int m_particles_per_v = 400;
+  int m_particles_per_v = 1000;
   int min_m_particles_per_v = 60;  ///< fewest M-particles KLD-sampling leaves a V-particle [1, 100000]
   double kld_error = 0.2;          ///< KLD-sampling's bound on the KL divergence (Fox 2003) [0, 1]; 0 = a fixed count
   double kld_z = 2.33;             ///< KLD-sampling's upper standard normal quantile (2.33: 99%) [0, 10]
 
   // Data-driven proposals (proposal_index.h).
   double index_share = 0.5;  ///< share of new M-particles drawn from the proposal index [0, 1]; 0 = none
-  int index_stride = 4;      ///< table px between the indexed points of a prototype [1, 64]
-  int index_candidates = 16; ///< places a V-particle's query returns [1, 1000]
+  int index_stride = 6;      ///< table px between the indexed points of a prototype [1, 64]
+  int index_candidates = 64; ///< places a V-particle's query returns [1, 1000]
 
   // Prototype memory.
   int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]

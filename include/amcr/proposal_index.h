@@ -3,8 +3,8 @@
 // of every prototype at a stride and every heading bin, the 8 feature rays
 // the table holds there, described up to scale; a V-particle's own 8 rays,
 // described the same way, find the (prototype, point, heading, scale) places
-// of the whole memory that look like what it sees, by an approximate
-// nearest-neighbour search (OpenCV's FLANN, randomised k-d trees).
+// of the whole memory that look like what it sees, by a nearest-neighbour
+// search in a k-d tree (OpenCV's FLANN).
 //
 // The descriptor is the rays' log distances minus their mean: a similarity
 // leaves it unchanged (the scale goes into the mean, a rotation by a multiple
@@ -76,7 +76,7 @@ public:
   ProposalIndex(const ProposalIndex&) = delete;
   ProposalIndex& operator=(const ProposalIndex&) = delete;
 
-  /// The `k` entries nearest to the V-particle's rays (approximate search),
+  /// The `k` entries nearest to the V-particle's rays (k-d tree search),
   /// nearest first; empty unless all 8 rays met an edge.
   std::vector<ProposalCandidate> query(const RaySignature& rays, int k) const;
 

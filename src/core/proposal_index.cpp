@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 
 #include <opencv2/flann.hpp>
 
@@ -12,9 +11,10 @@ namespace amcr
 {
 namespace
 {
-constexpr int kKdTrees = 4;      // randomised k-d trees of the FLANN index
-constexpr int kSearchChecks = 128;  // leaves a query visits: recall against time (test_proposal_index.cpp)
-constexpr std::uint64_t kTreeSeed = 1;  // of the trees' random splits
+// One k-d tree with leaves of this many entries (FLANN's KDTreeSingleIndex):
+// in 8 dimensions an exact search is fast enough, and the tree costs a few
+// bytes per entry where FLANN's randomised forest took ~350 bytes.
+constexpr int kLeafSize = 10;
 
 /// Log distances minus their mean; the mean in `log_mean`.
 void centre(const float log_distance[kFeatureRays], RayDescriptor& out, float& log_mean)
@@ -117,13 +117,11 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
   descriptors_.create(static_cast<int>(rows.size()), kFeatureRays, CV_32F);
   for (int r = 0; r < descriptors_.rows; ++r)
     std::copy(rows[r].begin(), rows[r].end(), descriptors_.ptr<float>(r));
-  // FLANN's randomised trees draw from OpenCV's generator of this thread:
-  // seed it, so that the same memory gives the same index (and the same
-  // proposals), and give the caller its state back.
-  const cv::RNG caller_state = cv::theRNG();
-  cv::theRNG() = cv::RNG(kTreeSeed);
-  index_ = std::make_unique<cv::flann::Index>(descriptors_, cv::flann::KDTreeIndexParams(kKdTrees));
-  cv::theRNG() = caller_state;
+  cv::flann::IndexParams tree;
+  tree.setAlgorithm(cvflann::FLANN_INDEX_KDTREE_SINGLE);
+  tree.setInt("leaf_max_size", kLeafSize);
+  tree.setBool("reorder", true);
+  index_ = std::make_unique<cv::flann::Index>(descriptors_, tree);
 }
 
 ProposalIndex::~ProposalIndex() = default;
@@ -159,7 +157,7 @@ std::vector<ProposalCandidate> ProposalIndex::query(const RaySignature& rays, in
   std::vector<float> q(d.begin(), d.end());
   std::vector<int> indices(k, -1);
   std::vector<float> dists(k, 0.f);
-  index_->knnSearch(q, indices, dists, k, cv::flann::SearchParams(kSearchChecks));
+  index_->knnSearch(q, indices, dists, k, cv::flann::SearchParams());
   return candidates(log_mean, indices, dists);
 }
 

@@ -153,6 +153,8 @@ int run(const RunnerOptions& options)
   auto memory = std::make_shared<amcr::PrototypeMemory>(
       amcr::PrototypeMemory::loadDirectory(options.prototypes, params, reportWarning));
   amcr::Recognizer recognizer(params, memory);
+  for (const std::string& warning : recognizer.filter().indexWarnings())
+    reportWarning(warning);
 
   std::unique_ptr<OverlayVideo> overlay;
   if (!options.overlay.empty())

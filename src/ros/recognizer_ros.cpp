@@ -130,6 +130,8 @@ std::string RecognizerRos::loadLocked(const std::string& directory)
     memory_ = memory;
     memory_directory_ = directory;
     restart(std::move(replacement));
+    for (const std::string& w : recognizer_->filter().indexWarnings())
+      ROS_WARN("proposal index: %s", w.c_str());
     ROS_INFO("loaded %zu prototypes from '%s'", memory->size(), directory.c_str());
     stats_.setPrototypes(memory->size(), "");
     return "";
@@ -205,6 +207,9 @@ void RecognizerRos::applyConfigLocked(const amcr::AMCRConfig& config, std::uint3
   params_ = changed;
   memory_ = memory;
   restart(std::move(rebuilt));  // null only while no memory is loaded: then there is no filter either
+  if (recognizer_)
+    for (const std::string& w : recognizer_->filter().indexWarnings())
+      ROS_WARN("proposal index: %s", w.c_str());
   ROS_INFO("reconfigured (%s): %s", what.c_str(),
            !memory_ ? "no prototypes loaded yet"
                     : tables_rebuilt ? "prototype tables and filter rebuilt" : "filter rebuilt");
