@@ -168,8 +168,9 @@ TEST_F(ProposalIndexTest, TreeSearchAgreesWithExhaustiveSearch)
         tableSignature(prototype, at.x, at.y, static_cast<int>(gen() % amcr::kDirectionBins), 1.3f);
     for (float& d : s.distance)
       d *= static_cast<float>(std::exp(0.2 * (2.0 * unit(gen) - 1.0)));  // not an indexed point
-    if (s.valid_rays() < amcr::kFeatureRays)
-      continue;
+    amcr::RayDescriptor described;
+    if (!amcr::describeRays(s, described))
+      continue;  // an incomplete scan, or a ray shorter than 2 px
     const auto approx = index_->query(s, kCandidates);
     const auto exact = index_->queryExact(s, kCandidates);
     ASSERT_EQ(exact.size(), static_cast<std::size_t>(kCandidates));
@@ -220,33 +221,55 @@ TEST_F(ProposalIndexTest, TheDescriptorIgnoresScale)
   EXPECT_NEAR(near[0].log_scale - near_twice[0].log_scale, std::log(2.0), 1e-4);
 }
 
-/// A sliver: a triangle 180 px long and at most 2 px thick.
-cv::Mat sliverImage()
+/// A disc filling its image: at prototype_size 512 every pixel of it has a
+/// ray longer than the table holds (127 px), so no place has 8 rays.
+cv::Mat discImage()
 {
   cv::Mat image(200, 200, CV_8UC1, cv::Scalar(0));
-  amcr_test::fillPolygon(image, {{10, 100}, {190, 99}, {190, 101}}, 255, false);
+  cv::circle(image, {100, 100}, 95, cv::Scalar(255), cv::FILLED);
   return image;
 }
 
-TEST(ProposalIndexBadInput, APrototypeTooThinToIndexIsNamedAndLeftOut)
+amcr::Params largeTables()
+{
+  amcr::Params params;
+  params.prototype_size = 512;
+  return params;
+}
+
+TEST(ProposalIndexBadInput, APrototypeWithoutPlacesIsNamedAndLeftOut)
 {
   amcr::PrototypeMemory memory;
-  const amcr::Params params;
-  memory.add("arrow", amcr_test::drawPrototype(ShapeId::kArrow), params);
-  memory.add("sliver", sliverImage(), params);
+  memory.add("arrow", amcr_test::drawPrototype(ShapeId::kArrow), amcr::Params());
+  memory.add("disc", discImage(), largeTables());
   std::vector<std::string> warnings;
-  const amcr::ProposalIndex index(memory, 16, {}, [&](const std::string& line) { warnings.push_back(line); });
+  const amcr::ProposalIndex index(memory, 6, {}, [&](const std::string& line) { warnings.push_back(line); });
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("'sliver'"), std::string::npos) << warnings[0];
-  ASSERT_EQ(index.leftOut(), std::vector<std::string>{"sliver"});
+  EXPECT_NE(warnings[0].find("'disc'"), std::string::npos) << warnings[0];
+  ASSERT_EQ(index.leftOut(), std::vector<std::string>{"disc"});
   EXPECT_GT(index.size(), 500u);  // the arrow is indexed
+}
+
+// A small prototype (prototype_size 32) has too few places at the default
+// stride and is indexed at a finer one.
+TEST(ProposalIndexBadInput, ASmallPrototypeIsIndexedAtAFinerStride)
+{
+  amcr::Params small;
+  small.prototype_size = 32;
+  amcr::PrototypeMemory memory;
+  memory.add("arrow", amcr_test::drawPrototype(ShapeId::kArrow), small);
+  std::vector<std::string> warnings;
+  const amcr::ProposalIndex index(memory, 6, {}, [&](const std::string& line) { warnings.push_back(line); });
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_TRUE(index.leftOut().empty());
+  EXPECT_GT(index.size(), 100u);
 }
 
 TEST(ProposalIndexBadInput, AnIndexWithoutUsableEntriesIsAnError)
 {
   amcr::PrototypeMemory memory;
-  memory.add("sliver", sliverImage(), amcr::Params());
-  EXPECT_THROW(amcr::ProposalIndex(memory, 16), amcr::MemoryError);
+  memory.add("disc", discImage(), largeTables());
+  EXPECT_THROW(amcr::ProposalIndex(memory, 6), amcr::MemoryError);
   EXPECT_THROW(amcr::ProposalIndex(memory, 0), amcr::ParameterError);
 }
 }  // namespace

@@ -37,11 +37,12 @@ namespace amcr
 using RayDescriptor = std::array<float, kFeatureRays>;
 
 /// The descriptor of a V-particle's measured rays; false (and `out` left
-/// alone) unless all 8 rays met an edge.
+/// alone) unless all 8 rays met an edge, none closer than 2 px.
 bool describeRays(const RaySignature& rays, RayDescriptor& out);
 
 /// The descriptor of the table rays at pixel (x, y) of `prototype` for
-/// heading bin `bin`; false unless all 8 meet an edge in the table.
+/// heading bin `bin`; false unless all 8 meet an edge in the table, none
+/// closer than 2 px.
 bool describeTableRays(const Prototype& prototype, int x, int y, int bin, RayDescriptor& out);
 
 /// One place of the memory that looks like a V-particle's scan.
@@ -61,15 +62,17 @@ public:
   using WarningSink = std::function<void(const std::string&)>;
 
   /// Fewest places (indexed pixels with at least one heading whose 8 rays
-  /// all meet an edge) a prototype needs: below it, it is too thin or too
-  /// small at this stride for the index to find it.
+  /// all meet an edge) a prototype needs to be indexed.
   static constexpr int kMinPlacesPerPrototype = 10;
 
   /// Indexes every prototype of `memory` whose `active` flag is set (all when
-  /// `active` is empty) at pixels `stride` table px apart. A prototype with
-  /// fewer than kMinPlacesPerPrototype places is left out with a warning
-  /// naming it (it is still found by the uniform proposal). Throws
-  /// ParameterError for a stride below 1, MemoryError when no entry is left.
+  /// `active` is empty) at pixels `stride` table px apart; a prototype with
+  /// fewer than kMinPlacesPerPrototype places at that stride at half of it,
+  /// down to every pixel. A prototype that has too few even then (every
+  /// pixel of it has a ray longer than the table holds: a large, round shape
+  /// at a large prototype_size) is left out with a warning naming it; the
+  /// uniform proposal still seeds it. Throws ParameterError for a stride
+  /// below 1, MemoryError when no entry is left.
   ProposalIndex(const PrototypeMemory& memory, int stride, const std::vector<bool>& active = {},
                 const WarningSink& warn = WarningSink());
   ~ProposalIndex();
@@ -95,6 +98,8 @@ private:
     short x, y, bin;
     float log_mean;  // mean log table distance of the 8 rays
   };
+  /// Adds the entries of prototype `p` at `stride`; returns its places.
+  int indexPrototype(const Prototype& prototype, int p, int stride, std::vector<RayDescriptor>& rows);
   std::vector<ProposalCandidate> candidates(float query_log_mean, const std::vector<int>& indices,
                                             const std::vector<float>& dists) const;
 

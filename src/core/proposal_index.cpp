@@ -11,6 +11,9 @@ namespace amcr
 {
 namespace
 {
+// Rays shorter than this (px) do not describe a place: a pixel on the
+// outline's blurred edge sees that edge in every direction.
+constexpr float kShortestRay = 2.f;
 // One k-d tree with leaves of this many entries (FLANN's KDTreeSingleIndex):
 // in 8 dimensions an exact search is fast enough, and the tree costs a few
 // bytes per entry where FLANN's randomised forest took ~350 bytes.
@@ -32,7 +35,7 @@ bool describe(const RaySignature& rays, RayDescriptor& out, float& log_mean)
   float logs[kFeatureRays];
   for (int k = 0; k < kFeatureRays; ++k)
   {
-    if (!(rays.distance[k] > 0.f))
+    if (!(rays.distance[k] >= kShortestRay))
       return false;
     logs[k] = std::log(std::max(0.25f, rays.distance[k]));
   }
@@ -47,7 +50,7 @@ bool describeTable(const Prototype& prototype, int x, int y, int bin, RayDescrip
   for (int k = 0; k < kFeatureRays; ++k)
   {
     const std::uint8_t d = raw[(bin + k * kFeatureBinStep) % kDirectionBins];
-    if (d == Prototype::kNoEdge)
+    if (d == Prototype::kNoEdge || d * Prototype::kDistanceUnit < kShortestRay)
       return false;
     logs[k] = std::log(std::max(0.25f, d * Prototype::kDistanceUnit));
   }
@@ -74,46 +77,39 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
 {
   if (stride < 1)
     throw ParameterError("index_stride must be at least 1 table px, got " + std::to_string(stride));
+  entries_.clear();
   std::vector<RayDescriptor> rows;
   for (std::size_t p = 0; p < memory.size(); ++p)
   {
     if (!active.empty() && !active[p])
       continue;
     const Prototype& prototype = memory[p];
-    const std::size_t first = entries_.size();
+    // A prototype with too few places at the stride (a small prototype_size,
+    // a thin shape) is indexed at half the stride, down to every pixel.
     int places = 0;
-    for (const cv::Point& at : prototype.interior())
+    for (int at_stride = stride; at_stride >= 1; at_stride = at_stride == 1 ? 0 : std::max(1, at_stride / 2))
     {
-      if (at.x % stride != 0 || at.y % stride != 0)
-        continue;
-      const std::size_t before = entries_.size();
-      for (int bin = 0; bin < kDirectionBins; ++bin)
-      {
-        RayDescriptor d;
-        float log_mean = 0.f;
-        if (!describeTable(prototype, at.x, at.y, bin, d, log_mean))
-          continue;
-        entries_.push_back({static_cast<int>(p), static_cast<short>(at.x), static_cast<short>(at.y),
-                            static_cast<short>(bin), log_mean});
-        rows.push_back(d);
-      }
-      places += entries_.size() > before ? 1 : 0;
+      const std::size_t first = entries_.size();
+      places = indexPrototype(prototype, static_cast<int>(p), at_stride, rows);
+      if (places >= kMinPlacesPerPrototype)
+        break;
+      entries_.resize(first);
+      rows.resize(first);
     }
     if (places < kMinPlacesPerPrototype)
     {
-      entries_.resize(first);
-      rows.resize(first);
       left_out_.push_back(prototype.label());
       if (warn)
         warn("prototype '" + prototype.label() + "' is left out of the proposal index: " + std::to_string(places) +
-             " of its pixels at a stride of " + std::to_string(stride) + " px see an edge on all 8 rays (it needs " +
-             std::to_string(kMinPlacesPerPrototype) + "); it is too thin or too small to index");
+             " of its pixels see an edge on all 8 rays within the table's reach (it needs " +
+             std::to_string(kMinPlacesPerPrototype) + "); the uniform proposal still seeds it");
     }
   }
   if (entries_.empty())
     throw MemoryError("the proposal index has no usable entry: no prototype has " +
-                      std::to_string(kMinPlacesPerPrototype) + " pixels at a stride of " + std::to_string(stride) +
-                      " px whose 8 rays all meet an edge (set index_share to 0 to work without it)");
+                      std::to_string(kMinPlacesPerPrototype) +
+                      " pixels whose 8 rays all meet an edge within the table's reach (set index_share to 0 to "
+                      "work without it)");
   descriptors_.create(static_cast<int>(rows.size()), kFeatureRays, CV_32F);
   for (int r = 0; r < descriptors_.rows; ++r)
     std::copy(rows[r].begin(), rows[r].end(), descriptors_.ptr<float>(r));
@@ -125,6 +121,28 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
 }
 
 ProposalIndex::~ProposalIndex() = default;
+
+int ProposalIndex::indexPrototype(const Prototype& prototype, int p, int stride, std::vector<RayDescriptor>& rows)
+{
+  int places = 0;
+  for (const cv::Point& at : prototype.interior())
+  {
+    if (at.x % stride != 0 || at.y % stride != 0)
+      continue;
+    const std::size_t before = entries_.size();
+    for (int bin = 0; bin < kDirectionBins; ++bin)
+    {
+      RayDescriptor d;
+      float log_mean = 0.f;
+      if (!describeTable(prototype, at.x, at.y, bin, d, log_mean))
+        continue;
+      entries_.push_back({p, static_cast<short>(at.x), static_cast<short>(at.y), static_cast<short>(bin), log_mean});
+      rows.push_back(d);
+    }
+    places += entries_.size() > before ? 1 : 0;
+  }
+  return places;
+}
 
 std::vector<ProposalCandidate> ProposalIndex::candidates(float query_log_mean, const std::vector<int>& indices,
                                                          const std::vector<float>& dists) const
