@@ -13,6 +13,7 @@
 #include <benchmark/benchmark.h>
 #include <opencv2/core/utility.hpp>
 
+#include "amcr/proposal_index.h"
 #include "amcr/prototype.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
@@ -48,13 +49,18 @@ const std::vector<cv::Mat>& frames()
   return sequence;
 }
 
-// One iteration (paper 3.6) on a 640x480 frame: args V-particles, M-particles
-// per prototype per V, prototypes. items/s = relational-particle updates per second.
+// One iteration (paper 3.6) on a 640x480 frame with the paper's counts
+// (m_particles_per_v 0, no proposal index, no KLD-sampling): args
+// V-particles, M-particles per prototype per V, prototypes. items/s =
+// relational-particle updates per second.
 void BM_RecognizerStep(benchmark::State& state)
 {
   amcr::Params params;
   params.num_v_particles = static_cast<int>(state.range(0));
   params.m_particles_per_prototype = static_cast<int>(state.range(1));
+  params.m_particles_per_v = 0;
+  params.index_share = 0.0;
+  params.kld_error = 0.0;
   static std::vector<std::shared_ptr<const amcr::PrototypeMemory>> memories(128);
   const int prototypes = static_cast<int>(state.range(2));
   if (!memories[prototypes])
@@ -88,6 +94,57 @@ BENCHMARK(BM_RecognizerStep)
     ->Args({30, 60, 35})
     ->Args({30, 60, 70})
     ->Unit(benchmark::kMillisecond);
+
+// One iteration with the defaults (issue 14: a budget of M-particles per
+// V-particle, the proposal index, KLD-sampling): args V-particles,
+// prototypes. items/s = relational-particle updates per second, at the mean
+// count KLD-sampling left.
+void BM_BudgetStep(benchmark::State& state)
+{
+  amcr::Params params;
+  params.num_v_particles = static_cast<int>(state.range(0));
+  static std::vector<std::shared_ptr<const amcr::PrototypeMemory>> memories(128);
+  const int prototypes = static_cast<int>(state.range(1));
+  if (!memories[prototypes])
+    memories[prototypes] = memoryOf(prototypes);
+  amcr::Recognizer recognizer(params, memories[prototypes]);
+  std::size_t k = 0;
+  for (int warm = 0; warm < 20; ++warm)
+    recognizer.step(frames()[k++ % frames().size()]);
+  double m_sum = 0.0;
+  for (auto _ : state)
+  {
+    const amcr::RecognitionResult result = recognizer.step(frames()[k++ % frames().size()]);
+    m_sum += result.mean_m_particles;
+    benchmark::DoNotOptimize(result);
+  }
+  const double mean_m = state.iterations() > 0 ? m_sum / state.iterations() : 0.0;
+  state.SetItemsProcessed(static_cast<int64_t>(m_sum * params.num_v_particles));
+  state.counters["mean_m_per_v"] = mean_m;
+}
+BENCHMARK(BM_BudgetStep)
+    ->Args({60, 3})
+    ->Args({60, 17})
+    ->Args({60, 35})
+    ->Args({60, 70})
+    ->Args({30, 17})
+    ->Unit(benchmark::kMillisecond);
+
+// Building the proposal index over a memory (args: prototypes).
+void BM_ProposalIndex(benchmark::State& state)
+{
+  const std::shared_ptr<const amcr::PrototypeMemory> memory = memoryOf(static_cast<int>(state.range(0)));
+  const amcr::Params defaults;
+  std::size_t entries = 0;
+  for (auto _ : state)
+  {
+    const amcr::ProposalIndex index(*memory, defaults.index_stride);
+    entries = index.size();
+    benchmark::DoNotOptimize(entries);
+  }
+  state.counters["entries"] = static_cast<double>(entries);
+}
+BENCHMARK(BM_ProposalIndex)->Arg(17)->Arg(70)->Unit(benchmark::kMillisecond);
 
 // Building one prototype's lookup table (args: prototype_size px).
 void BM_PrototypeTable(benchmark::State& state)

@@ -467,7 +467,7 @@ def speed_section(out, plt):
         return "Speed: not measured in this run (speed.json missing).\n"
     with open(path) as f:
         bench = json.load(f)
-    steps, tables = [], []
+    steps, tables, budget, index = [], [], [], []
     for b in bench["benchmarks"]:
         if b.get("run_type", "iteration") != "iteration":
             continue
@@ -475,6 +475,11 @@ def speed_section(out, plt):
             v, m, p = (int(x) for x in b["name"].split("/")[1:4])
             ms = b["real_time"] if b["time_unit"] == "ms" else b["real_time"] / 1e6
             steps.append((v, m, p, ms, b.get("items_per_second", 0)))
+        elif b["name"].startswith("BM_BudgetStep"):
+            v, p = (int(x) for x in b["name"].split("/")[1:3])
+            budget.append((p, v, b["real_time"], b.get("mean_m_per_v", 0), b.get("items_per_second", 0)))
+        elif b["name"].startswith("BM_ProposalIndex"):
+            index.append((int(b["name"].split("/")[1]), b["real_time"], b.get("entries", 0)))
         elif b["name"].startswith("BM_PrototypeTable"):
             side = int(b["name"].split("/")[1])
             tables.append((side, b["real_time"], b.get("table_MB", 0)))
@@ -485,6 +490,13 @@ def speed_section(out, plt):
              "|---|---|---|---|---|---|"]
     for v, m, p, ms, ups in sorted(steps, key=lambda s: (s[2], s[0], s[1])):
         lines.append("| %d | %d | %d | %d | %.2f | %.2f M |" % (v, m, p, v * m * p, ms, ups / 1e6))
+    if budget:
+        lines += ["", "With the defaults (a budget of M-particles per V-particle, the proposal index, KLD-sampling):", "",
+                  "| prototypes | V-particles | ms per iteration | mean M per V | updates/s |", "|---|---|---|---|---|"]
+        lines += ["| %d | %d | %.2f | %.0f | %.2f M |" % (p, v, ms, m, ups / 1e6) for p, v, ms, m, ups in sorted(budget)]
+    if index:
+        lines += ["", "| prototypes | proposal index build (ms) | entries |", "|---|---|---|"]
+        lines += ["| %d | %.0f | %d |" % t for t in sorted(index)]
     if tables:
         lines += ["", "| prototype_size (px) | table build (ms) | table size (MB) |", "|---|---|---|"]
         lines += ["| %d | %.0f | %.2f |" % t for t in sorted(tables)]
