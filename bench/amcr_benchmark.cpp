@@ -36,6 +36,15 @@ std::shared_ptr<const amcr::PrototypeMemory> memoryOf(int count)
   return memory;
 }
 
+/// The memory of `count` drawn prototypes, built once per count.
+std::shared_ptr<const amcr::PrototypeMemory> cachedMemory(int count)
+{
+  static std::vector<std::shared_ptr<const amcr::PrototypeMemory>> memories(128);
+  if (!memories[count])
+    memories[count] = memoryOf(count);
+  return memories[count];
+}
+
 /// 640x480 frames showing the arrow over clutter.
 const std::vector<cv::Mat>& frames()
 {
@@ -61,11 +70,8 @@ void BM_RecognizerStep(benchmark::State& state)
   params.m_particles_per_v = 0;
   params.index_share = 0.0;
   params.kld_error = 0.0;
-  static std::vector<std::shared_ptr<const amcr::PrototypeMemory>> memories(128);
   const int prototypes = static_cast<int>(state.range(2));
-  if (!memories[prototypes])
-    memories[prototypes] = memoryOf(prototypes);
-  amcr::Recognizer recognizer(params, memories[prototypes]);
+  amcr::Recognizer recognizer(params, cachedMemory(prototypes));
   std::size_t k = 0;
   for (int warm = 0; warm < 20; ++warm)  // past the first iterations, as in a running stream
     recognizer.step(frames()[k++ % frames().size()]);
@@ -103,11 +109,7 @@ void BM_BudgetStep(benchmark::State& state)
 {
   amcr::Params params;
   params.num_v_particles = static_cast<int>(state.range(0));
-  static std::vector<std::shared_ptr<const amcr::PrototypeMemory>> memories(128);
-  const int prototypes = static_cast<int>(state.range(1));
-  if (!memories[prototypes])
-    memories[prototypes] = memoryOf(prototypes);
-  amcr::Recognizer recognizer(params, memories[prototypes]);
+  amcr::Recognizer recognizer(params, cachedMemory(static_cast<int>(state.range(1))));
   std::size_t k = 0;
   for (int warm = 0; warm < 20; ++warm)
     recognizer.step(frames()[k++ % frames().size()]);
@@ -133,7 +135,7 @@ BENCHMARK(BM_BudgetStep)
 // Building the proposal index over a memory (args: prototypes).
 void BM_ProposalIndex(benchmark::State& state)
 {
-  const std::shared_ptr<const amcr::PrototypeMemory> memory = memoryOf(static_cast<int>(state.range(0)));
+  const std::shared_ptr<const amcr::PrototypeMemory> memory = cachedMemory(static_cast<int>(state.range(0)));
   const amcr::Params defaults;
   std::size_t entries = 0;
   for (auto _ : state)

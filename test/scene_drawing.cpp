@@ -396,6 +396,17 @@ TempDir::~TempDir()
 }
 
 std::string TempDir::file(const std::string& name) const { return path_ + "/" + name; }
+amcr::RaySignature tableRays(const amcr::Prototype& prototype, int x, int y, int bin, float scale)
+{
+  amcr::RaySignature s;
+  for (int k = 0; k < amcr::kFeatureRays; ++k)
+  {
+    const float d = prototype.distance(x, y, (bin + k * amcr::kFeatureBinStep) % amcr::kDirectionBins);
+    s.distance[k] = d > 0.f ? scale * d : 0.f;
+  }
+  return s;
+}
+
 cv::Mat drawRandomSilhouette(std::uint64_t seed)
 {
   std::mt19937_64 gen(seed);

@@ -14,6 +14,7 @@
 
 #include "amcr/affine.h"
 #include "amcr/params.h"
+#include "amcr/particles.h"
 #include "amcr/prototype_memory.h"
 
 namespace amcr_test
@@ -48,6 +49,11 @@ std::vector<cv::Point2d> shapePolygon(ShapeId id);
 /// A memory of the drawn prototypes of `shapes`, labelled by shapeName().
 std::shared_ptr<const amcr::PrototypeMemory> drawnMemory(const std::vector<ShapeId>& shapes,
                                                          const amcr::Params& params = amcr::Params());
+
+/// The 8 feature rays a prototype's table holds at pixel (x, y) for heading
+/// bin `bin`, times `scale` (0 where a ray meets no edge): what a V-particle
+/// would measure at that place of an image of the prototype `scale` times larger.
+amcr::RaySignature tableRays(const amcr::Prototype& prototype, int x, int y, int bin, float scale);
 
 /// A further silhouette for larger memories: a random spiky polygon of
 /// 12-18 vertices drawn from `seed` (unlike the ShapeId shapes and the

@@ -18,17 +18,7 @@ namespace
 {
 using amcr_test::ShapeId;
 
-/// The table's own scans at (x, y) and `bin`, scaled by `scale`, as a V-particle would see them.
-amcr::RaySignature signatureAt(const amcr::Prototype& p, int x, int y, int bin, float scale)
-{
-  amcr::RaySignature s;
-  for (int k = 0; k < amcr::kFeatureRays; ++k)
-  {
-    const float d = p.distance(x, y, (bin + k * amcr::kFeatureBinStep) % amcr::kDirectionBins);
-    s.distance[k] = d > 0.f ? scale * d : 0.f;
-  }
-  return s;
-}
+using amcr_test::tableRays;
 
 /// Angular distance in bins, modulo a turn.
 int binDistance(int a, int b)
@@ -46,7 +36,7 @@ TEST(HeadingProposal, FindsTheBinOfAScaledCopyOfTheScans)
     const cv::Point at = prototype.interior()[i];
     for (int bin = 0; bin < amcr::kDirectionBins; bin += 7)
     {
-      const amcr::RaySignature s = signatureAt(prototype, at.x, at.y, bin, 1.7f);
+      const amcr::RaySignature s = tableRays(prototype, at.x, at.y, bin, 1.7f);
       if (s.valid_rays() < 8)
         continue;  // the proposal is only as sure as the scans are complete
       ++tried;
@@ -117,7 +107,7 @@ amcr::RaySignature randomSignature(std::mt19937_64& gen, const amcr::Prototype& 
     *kind_out = kind < 0.5 ? kOwnScans : kind < 0.75 ? kOtherScans : kRandom;
   if (kind < 0.5)
   {
-    s = signatureAt(p, at.x, at.y, static_cast<int>(gen() % amcr::kDirectionBins), float(0.3 + 3 * unit(gen)));
+    s = tableRays(p, at.x, at.y, static_cast<int>(gen() % amcr::kDirectionBins), float(0.3 + 3 * unit(gen)));
     const double noise = 0.15 * unit(gen);
     for (float& d : s.distance)
       d = unit(gen) < 0.1 ? 0.f : d * static_cast<float>(std::exp(noise * (2 * unit(gen) - 1)));
@@ -125,7 +115,7 @@ amcr::RaySignature randomSignature(std::mt19937_64& gen, const amcr::Prototype& 
   else if (kind < 0.75)
   {
     const cv::Point other = p.interior()[gen() % p.interior().size()];
-    s = signatureAt(p, other.x, other.y, static_cast<int>(gen() % amcr::kDirectionBins), float(0.3 + 3 * unit(gen)));
+    s = tableRays(p, other.x, other.y, static_cast<int>(gen() % amcr::kDirectionBins), float(0.3 + 3 * unit(gen)));
   }
   else
     for (float& d : s.distance)

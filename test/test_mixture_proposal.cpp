@@ -39,6 +39,16 @@ struct Moments
   double sdY() const { return std::sqrt(yy / weight - meanY() * meanY()); }
 };
 
+/// The largest difference of mean or spread (x or y) between `a` and `b`, over both prototypes.
+double worstMomentError(const Moments (&a)[2], const Moments (&b)[2])
+{
+  double worst = 0.0;
+  for (int q = 0; q < 2; ++q)
+    worst = std::max({worst, std::abs(a[q].meanX() - b[q].meanX()), std::abs(a[q].meanY() - b[q].meanY()),
+                      std::abs(a[q].sdX() - b[q].sdX()), std::abs(a[q].sdY() - b[q].sdY())});
+  return worst;
+}
+
 amcr::Params toyParams()
 {
   amcr::Params p;
@@ -102,32 +112,16 @@ TEST(MixtureProposal, WeightedNewParticlesFollowTheSeedingPrior)
   EXPECT_NEAR(weighted[0].weight / total, prior[0], 0.02) << "unweighted " << unweighted_arrow;
   // The proposal alone is far from pi (so that the test can fail): its
   // particles crowd at the index's places.
-  double worst_unweighted = 0.0;
-  for (int q = 0; q < 2; ++q)
-    worst_unweighted = std::max({worst_unweighted, std::abs(unweighted[q].meanX() - truth[q].meanX()),
-                                 std::abs(unweighted[q].meanY() - truth[q].meanY()),
-                                 std::abs(unweighted[q].sdX() - truth[q].sdX()),
-                                 std::abs(unweighted[q].sdY() - truth[q].sdY())});
+  const double worst_unweighted = worstMomentError(unweighted, truth);
   EXPECT_GT(worst_unweighted, 4.0);
-  double worst_weighted = 0.0;
-  for (int q = 0; q < 2; ++q)
-    worst_weighted = std::max({worst_weighted, std::abs(weighted[q].meanX() - truth[q].meanX()),
-                               std::abs(weighted[q].meanY() - truth[q].meanY()),
-                               std::abs(weighted[q].sdX() - truth[q].sdX()),
-                               std::abs(weighted[q].sdY() - truth[q].sdY())});
+  const double worst_weighted = worstMomentError(weighted, truth);
   std::cout << "[ mixture  ] " << from_index << " of " << m.size() << " particles from the index; arrow share "
             << unweighted_arrow << " unweighted, " << weighted[0].weight / total << " weighted (prior 0.75); worst "
             << "moment error " << worst_unweighted << " px unweighted, " << worst_weighted << " px weighted" << std::endl;
-  for (int q = 0; q < 2; ++q)
-  {
-    // Tolerances: a few standard errors of ~10^4 uniform samples (the table
-    // spread is ~25-35 px, so the standard error of a mean is ~0.3-0.5 px).
-    // [measured: 0.56 px at worst; the unweighted particles 29.5 px]
-    EXPECT_NEAR(weighted[q].meanX(), truth[q].meanX(), 1.5) << "prototype " << q;
-    EXPECT_NEAR(weighted[q].meanY(), truth[q].meanY(), 1.5) << "prototype " << q;
-    EXPECT_NEAR(weighted[q].sdX(), truth[q].sdX(), 1.5) << "prototype " << q;
-    EXPECT_NEAR(weighted[q].sdY(), truth[q].sdY(), 1.5) << "prototype " << q;
-  }
+  // Tolerance: a few standard errors of ~10^4 uniform samples (the table
+  // spread is ~25-35 px, so the standard error of a mean is ~0.3-0.5 px).
+  // [measured: 0.54 px at worst; the unweighted particles 27 px]
+  EXPECT_LT(worst_weighted, 1.5);
 }
 
 TEST(MixtureProposal, WithTheIndexOffEveryWeightIsOne)

@@ -41,17 +41,7 @@ bool hits(const std::vector<amcr::ProposalCandidate>& candidates, int p, const c
   return false;
 }
 
-/// The table's own rays at (x, y) and `bin`, scaled, as a V-particle would see them.
-amcr::RaySignature tableSignature(const amcr::Prototype& p, int x, int y, int bin, float scale)
-{
-  amcr::RaySignature s;
-  for (int k = 0; k < amcr::kFeatureRays; ++k)
-  {
-    const float d = p.distance(x, y, (bin + k * amcr::kFeatureBinStep) % amcr::kDirectionBins);
-    s.distance[k] = d > 0.f ? scale * d : 0.f;
-  }
-  return s;
-}
+using amcr_test::tableRays;
 
 class ProposalIndexTest : public ::testing::Test
 {
@@ -86,7 +76,7 @@ TEST_F(ProposalIndexTest, FindsTheTablesOwnScansAtAnyScale)
     {
       const cv::Point at = prototype.interior()[gen() % prototype.interior().size()];
       const int bin = static_cast<int>(gen() % amcr::kDirectionBins);
-      const amcr::RaySignature s = tableSignature(prototype, at.x, at.y, bin, static_cast<float>(0.4 + 2.6 * unit(gen)));
+      const amcr::RaySignature s = tableRays(prototype, at.x, at.y, bin, static_cast<float>(0.4 + 2.6 * unit(gen)));
       if (s.valid_rays() < amcr::kFeatureRays)
         continue;
       ++tried;
@@ -165,7 +155,7 @@ TEST_F(ProposalIndexTest, TreeSearchAgreesWithExhaustiveSearch)
     const amcr::Prototype& prototype = (*memory_)[gen() % memory_->size()];
     const cv::Point at = prototype.interior()[gen() % prototype.interior().size()];
     amcr::RaySignature s =
-        tableSignature(prototype, at.x, at.y, static_cast<int>(gen() % amcr::kDirectionBins), 1.3f);
+        tableRays(prototype, at.x, at.y, static_cast<int>(gen() % amcr::kDirectionBins), 1.3f);
     for (float& d : s.distance)
       d *= static_cast<float>(std::exp(0.2 * (2.0 * unit(gen) - 1.0)));  // not an indexed point
     amcr::RayDescriptor described;

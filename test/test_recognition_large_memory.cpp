@@ -53,13 +53,11 @@ amcr::Params params()
   return p;
 }
 
+/// The end-to-end scenes' clutter (the defaults) without their silhouettes,
+/// which are in this memory.
 amcr_test::Clutter clutter(std::uint64_t seed)
 {
   amcr_test::Clutter c;
-  c.random_shapes = 7;
-  c.lines = 10;
-  c.noise_sigma = 6.0;
-  c.gradient = 60.0;
   c.seed = seed;
   return c;
 }
