@@ -19,7 +19,6 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.realpath(__file__))
 sys.path.insert(0, HERE)
-from test_real_camera_truth import Recording, junit  # noqa: E402  (the same JUnit writer)
 
 _loader = importlib.machinery.SourceFileLoader("make_sequences", os.path.join(HERE, "..", "..", "bench", "make_sequences"))
 _spec = importlib.util.spec_from_loader("make_sequences", _loader)
@@ -105,14 +104,5 @@ class Suites(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    import time
-    xml = None
-    if "--xml" in sys.argv:
-        xml = sys.argv[sys.argv.index("--xml") + 1]
-    suite = unittest.defaultTestLoader.loadTestsFromModule(sys.modules[__name__])
-    start = time.time()
-    result = unittest.TextTestRunner(resultclass=Recording, verbosity=2).run(suite)
-    if xml:
-        os.makedirs(os.path.dirname(os.path.abspath(xml)), exist_ok=True)
-        junit(result, xml, time.time() - start)
-    sys.exit(0 if result.wasSuccessful() else 1)
+    from junit_runner import run_module
+    sys.exit(run_module(sys.modules[__name__], "test_make_sequences"))

@@ -4,7 +4,6 @@ known homography, and on visp-images-data's mire-2 (skipped with a message when 
 
   test/bench/test_real_camera_truth.py [--xml FILE]   (JUnit XML for catkin; about 5 s)
 """
-import math
 import os
 import sys
 import unittest
@@ -84,41 +83,6 @@ class Mire2(unittest.TestCase):
             previous = c
 
 
-def junit(result, path, seconds):
-    cases = result.testsRun
-    with open(path, "w") as f:
-        f.write('<?xml version="1.0" encoding="UTF-8"?>\n<testsuite name="test_real_camera_truth" tests="%d" '
-                'failures="%d" errors="%d" skipped="%d" time="%.2f">\n' % (
-                    cases, len(result.failures), len(result.errors), len(result.skipped), seconds))
-        bad = {t.id(): m for t, m in result.failures + result.errors}
-        skipped = {t.id(): m for t, m in result.skipped}
-        for test in result.all:
-            name = test.id().split(".")
-            f.write('  <testcase classname="%s" name="%s">' % (name[-2], name[-1]))
-            if test.id() in bad:
-                f.write('<failure message="failed"><![CDATA[%s]]></failure>' % bad[test.id()])
-            elif test.id() in skipped:
-                f.write('<skipped message="%s"/>' % skipped[test.id()].replace('"', "'"))
-            f.write("</testcase>\n")
-        f.write("</testsuite>\n")
-
-
-class Recording(unittest.TextTestResult):
-    def startTest(self, test):
-        self.all = getattr(self, "all", [])
-        self.all.append(test)
-        super().startTest(test)
-
-
 if __name__ == "__main__":
-    import time
-    xml = None
-    if "--xml" in sys.argv:
-        xml = sys.argv[sys.argv.index("--xml") + 1]
-    suite = unittest.defaultTestLoader.loadTestsFromModule(sys.modules[__name__])
-    start = time.time()
-    result = unittest.TextTestRunner(resultclass=Recording, verbosity=2).run(suite)
-    if xml:
-        os.makedirs(os.path.dirname(os.path.abspath(xml)), exist_ok=True)
-        junit(result, xml, time.time() - start)
-    sys.exit(0 if result.wasSuccessful() else 1)
+    from junit_runner import run_module
+    sys.exit(run_module(sys.modules[__name__], "test_real_camera_truth"))
