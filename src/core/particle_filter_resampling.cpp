@@ -100,9 +100,11 @@ int ParticleFilter::kldCount(const std::vector<int>& picks, std::size_t begin)
   for (int pick : picks)
   {
     const std::size_t i = begin + pick;
-    const auto bx = static_cast<std::uint64_t>(static_cast<std::uint16_t>(std::floor(m_.x[i] / kKldCell)));
-    const auto by = static_cast<std::uint64_t>(static_cast<std::uint16_t>(std::floor(m_.y[i] / kKldCell)));
-    const auto bt = static_cast<std::uint64_t>(static_cast<std::uint16_t>(std::floor(m_.theta[i] / kKldAngle) + 64));
+    // Through int: a float cast straight to an unsigned type is undefined below 0.
+    const auto cell = [](float value, float size) {
+      return static_cast<std::uint64_t>(static_cast<std::uint16_t>(static_cast<int>(std::floor(value / size)) + 64));
+    };
+    const std::uint64_t bx = cell(m_.x[i], kKldCell), by = cell(m_.y[i], kKldCell), bt = cell(m_.theta[i], kKldAngle);
     kld_bins_.push_back(static_cast<std::uint64_t>(m_.prototype[i]) << 48 | bx << 32 | by << 16 | bt);
   }
   std::sort(kld_bins_.begin(), kld_bins_.end());
