@@ -101,6 +101,7 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   amcr::RecognitionResult result;
   result.iteration = 7;
   result.iterations = 0.5;
+  result.mean_m_particles = 412.3;
   result.time_ms = 3.14159;  // the core's measurement is the one written
   amcr::RecognizedObject object;
   object.label = "bird \"1\"";
@@ -122,7 +123,8 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   const std::string line = frameJson(3, result);
   EXPECT_EQ(line.find('\n'), std::string::npos);
   EXPECT_EQ(line,
-            "{\"frame\": 3, \"time_ms\": 3.142, \"iteration\": 7, \"iterations\": 0.500, \"objects\": [{\"label\": \"bird \\\"1\\\"\", "
+            "{\"frame\": 3, \"time_ms\": 3.142, \"iteration\": 7, \"iterations\": 0.500, \"mean_m_particles\": 412.3, "
+            "\"objects\": [{\"label\": \"bird \\\"1\\\"\", "
             "\"track_id\": 4, \"score\": 0.9300, \"support\": 17, "
             "\"image_to_prototype\": [[0.500000, 0.000000, -10.000000], [0.000000, 0.500000, null]], "
             "\"prototype_to_image\": [[2.000000, 0.000000, 20.000000], [0.000000, 2.000000, 0.000000]], "
@@ -152,7 +154,8 @@ TEST(JsonOutput, EmptyAndSkippedFrames)
   empty.iterations = 1.0;
   empty.time_ms = 0.5;
   EXPECT_EQ(frameJson(0, empty),
-            "{\"frame\": 0, \"time_ms\": 0.500, \"iteration\": 1, \"iterations\": 1.000, \"objects\": []}");
+            "{\"frame\": 0, \"time_ms\": 0.500, \"iteration\": 1, \"iterations\": 1.000, \"mean_m_particles\": 0.0, "
+            "\"objects\": []}");
   const std::string skipped = skippedFrameJson(5, 4, "cannot read image 'a\\b.png'");
   EXPECT_EQ(skipped,
             "{\"frame\": 5, \"time_ms\": 0.000, \"iteration\": 4, \"iterations\": 0, \"objects\": [], "
