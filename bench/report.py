@@ -569,7 +569,7 @@ report, the first report within 30 frames."""
 METHODS_TEXT = """\
 Every method gets the same prototypes (the suite's `prototypes/` folder) and the same frames, one
 core each (OpenCV threads off), and reports labels with a prototype->image affine per frame:
-- **AMCR**: `config/amcr.yaml` as committed (60 V-particles x 60 M-particles per prototype),
+- **AMCR**: `config/amcr.yaml` as committed (60 V-particles, a budget of 1000 M-particles each shared by the prototypes, the proposal index, KLD-sampling),
   one recognizer per sequence, reset between sequences; what it reports (score >= the decision
   threshold) is taken as it is.
 - **ORB+RANSAC** (find_object_2d's method): prototypes rescaled to 200 px, described in both print
