@@ -133,6 +133,7 @@ private:
   void seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v);
   void seedUniform(MParticleSet& set, std::size_t index, int prototype, const VParticle& v);
   void seedAtCandidate(MParticleSet& set, std::size_t index, const ProposalCandidate& c);
+  void clearMeasurement(MParticleSet& set, std::size_t index) const;
   /// log(seeding density / mixture density) at M-particle `index` of `set`.
   float logProposalWeight(const MParticleSet& set, std::size_t index, double share) const;
   /// The places of the memory the V-particle's rays look like (candidates_).
@@ -140,8 +141,10 @@ private:
   /// KLD-sampling (Fox 2003): how many M-particles the next generation of
   /// a V-particle needs, given `picks` drawn from the current one.
   int kldCount(const std::vector<int>& picks, std::size_t begin);
-  void buildIndex();
-  /// ray_correspondence affine: gives M-particle `index` a view shape,
+  /// The proposal index of `memory` under `prior` (null when index_share
+  /// is 0); its warnings go to `warnings`.
+  std::shared_ptr<const ProposalIndex> buildIndex(const PrototypeMemory& memory, const PrototypePrior& prior,
+                                                  std::vector<std::string>& warnings) const;  /// ray_correspondence affine: gives M-particle `index` a view shape,
   /// frontal or drawn (corrected_scan.h); true when it is not frontal.
   bool drawShape(MParticleSet& set, std::size_t index);
   /// Scans the V-particle's rays (refreshing v.rays) and updates its

@@ -40,11 +40,6 @@ using RayDescriptor = std::array<float, kFeatureRays>;
 /// alone) unless all 8 rays met an edge, none closer than 2 px.
 bool describeRays(const RaySignature& rays, RayDescriptor& out);
 
-/// The descriptor of the table rays at pixel (x, y) of `prototype` for
-/// heading bin `bin`; false unless all 8 meet an edge in the table, none
-/// closer than 2 px.
-bool describeTableRays(const Prototype& prototype, int x, int y, int bin, RayDescriptor& out);
-
 /// One place of the memory that looks like a V-particle's scan.
 struct ProposalCandidate
 {
@@ -87,7 +82,6 @@ public:
   std::vector<ProposalCandidate> queryExact(const RaySignature& rays, int k) const;
 
   std::size_t size() const { return entries_.size(); }
-  int stride() const { return stride_; }
   /// Labels of the prototypes left out of the index.
   const std::vector<std::string>& leftOut() const { return left_out_; }
 
@@ -103,7 +97,6 @@ private:
   std::vector<ProposalCandidate> candidates(float query_log_mean, const std::vector<int>& indices,
                                             const std::vector<float>& dists) const;
 
-  int stride_;
   std::vector<Entry> entries_;
   cv::Mat descriptors_;  // one row per entry, CV_32F
   std::unique_ptr<cv::flann::Index> index_;

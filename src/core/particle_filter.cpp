@@ -51,17 +51,17 @@ ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const Proto
   , motion_(params)
   , rng_(params.seed)
 {
-  buildIndex();
+  index_ = buildIndex(*memory_, prior_, index_warnings_);
 }
 
-void ParticleFilter::buildIndex()
+std::shared_ptr<const ProposalIndex> ParticleFilter::buildIndex(const PrototypeMemory& memory,
+                                                                const PrototypePrior& prior,
+                                                                std::vector<std::string>& warnings) const
 {
-  index_warnings_.clear();
-  index_.reset();
   if (params_.index_share <= 0.0)
-    return;
-  index_ = std::make_shared<const ProposalIndex>(*memory_, params_.index_stride, prior_.activeMask(),
-                                                 [this](const std::string& line) { index_warnings_.push_back(line); });
+    return nullptr;
+  return std::make_shared<const ProposalIndex>(memory, params_.index_stride, prior.activeMask(),
+                                               [&warnings](const std::string& line) { warnings.push_back(line); });
 }
 
 void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
@@ -75,21 +75,13 @@ void ParticleFilter::setMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
   memory = checkedMemory(std::move(memory));
   PrototypePrior prior = checkedPrior(*memory, params_);
-  std::shared_ptr<const PrototypeMemory> old_memory = std::move(memory_);
-  PrototypePrior old_prior = std::move(prior_);
+  std::vector<std::string> warnings;
+  std::shared_ptr<const ProposalIndex> index = buildIndex(*memory, prior, warnings);
+  // Nothing failed: swap everything at once (on an error the old memory stays).
   memory_ = std::move(memory);
   prior_ = std::move(prior);
-  try
-  {
-    buildIndex();
-  }
-  catch (...)
-  {
-    memory_ = std::move(old_memory);  // keep the old memory, as on any error
-    prior_ = std::move(old_prior);
-    buildIndex();
-    throw;
-  }
+  index_ = std::move(index);
+  index_warnings_ = std::move(warnings);
   reset();
 }
 
@@ -194,6 +186,12 @@ void ParticleFilter::seedAtCandidate(MParticleSet& set, std::size_t index, const
   set.prototype[index] = c.prototype;
   for (int k = 0; k < 3; ++k)
     set.shape[k][index] = kFrontalShape[k];  // the descriptor matches similarities (proposal_index.h)
+  clearMeasurement(set, index);
+}
+
+// A new M-particle has no affine yet, and the likelihood of all rays invalid.
+void ParticleFilter::clearMeasurement(MParticleSet& set, std::size_t index) const
+{
   for (auto& a : set.affine)
     a[index] = 0.f;
   set.affine_valid[index] = kNoAffine;
@@ -262,10 +260,7 @@ void ParticleFilter::seedUniform(MParticleSet& set, std::size_t index, int proto
   const double heading = bin >= 0 ? binToAngle(bin) : rng_.uniform(-M_PI, M_PI);
   set.theta[index] = static_cast<float>(wrapAngle(heading));
   set.prototype[index] = prototype;
-  for (auto& a : set.affine)
-    a[index] = 0.f;
-  set.affine_valid[index] = kNoAffine;
-  set.log_likelihood[index] = static_cast<float>(kFeatureRays * observation_.logInvalid());
+  clearMeasurement(set, index);
 }
 
 // The view shape of a new M-particle: frontal, or for oblique_share of

@@ -65,19 +65,11 @@ bool describeRays(const RaySignature& rays, RayDescriptor& out)
   return describe(rays, out, log_mean);
 }
 
-bool describeTableRays(const Prototype& prototype, int x, int y, int bin, RayDescriptor& out)
-{
-  float log_mean = 0.f;
-  return describeTable(prototype, x, y, bin, out, log_mean);
-}
-
 ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const std::vector<bool>& active,
                              const WarningSink& warn)
-  : stride_(stride)
 {
   if (stride < 1)
     throw ParameterError("index_stride must be at least 1 table px, got " + std::to_string(stride));
-  entries_.clear();
   std::vector<RayDescriptor> rows;
   for (std::size_t p = 0; p < memory.size(); ++p)
   {
