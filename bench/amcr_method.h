@@ -27,6 +27,8 @@ public:
       d.label = o.label;
       d.score = o.score;
       d.prototype_to_image = o.prototype_to_image;
+      d.track_id = o.track_id;
+      // The track's state (tentative/confirmed/held) goes here once RecognizedObject carries it.
       for (const amcr::Correspondence& c : o.correspondences)
         d.correspondences.push_back({c.image, c.prototype});
       found.push_back(std::move(d));

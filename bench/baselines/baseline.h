@@ -22,6 +22,9 @@ struct Detection
   std::string label;
   double score = 0.0;             ///< the method's own confidence (higher is better)
   cv::Matx23d prototype_to_image;  ///< original prototype px -> image px (pixel centres)
+  /// The method's track of this object, stable from frame to frame; -1: the method keeps no tracks
+  /// (the baselines), and the JSONL line omits it.
+  int track_id = -1;
   /// Pairs (image point, prototype point), when the method has them.
   std::vector<std::pair<cv::Point2d, cv::Point2d>> correspondences;
 };
