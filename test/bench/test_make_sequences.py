@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """Tests of the issue-14 suites of bench/make_sequences: the `memory-growth` memories (nested, each
-holding every target) and the 1280x720 suites (`paper-hd`: the `paper` frames and truth, scaled).
+holding every target) and the 1280x720 suites (`paper-hd`: the `paper` frames and truth, scaled);
+of the issue-15 suites (`copies`: apart and where the truth says; `real-photos`: the six parts of
+pca_test1 where the truth says) and of bench/report.py's instance matching.
 Needs the MPEG-7 silhouettes (AMCR_DATA, default ../shared/data from the checkout) and opencv-doc's
 photos; skips with a message without them.
 
@@ -24,6 +26,8 @@ _loader = importlib.machinery.SourceFileLoader("make_sequences", os.path.join(HE
 _spec = importlib.util.spec_from_loader("make_sequences", _loader)
 ms = importlib.util.module_from_spec(_spec)
 _loader.exec_module(ms)
+sys.path.insert(0, os.path.join(HERE, "..", "..", "bench"))
+import report  # noqa: E402  bench/report.py
 
 DATA = os.environ.get("AMCR_DATA", os.path.join(HERE, "..", "..", "..", "shared", "data"))
 MPEG7 = os.path.join(DATA, "mpeg7")
@@ -37,6 +41,8 @@ class SeedIndex(unittest.TestCase):
                                                          "within-class", "oblique", "real-camera"]},
                          {"clutter-only": 0, "mpeg7-70": 1, "paper": 2, "similar": 3, "two-objects": 4,
                           "within-class": 5, "oblique": 6, "real-camera": 7})
+        self.assertEqual([ms.SEED_INDEX[s] for s in ["memory-growth", "paper-hd", "clutter-only-hd", "copies",
+                                                      "real-photos"]], [8, 9, 10, 11, 12])
         self.assertEqual(len(set(ms.SEED_INDEX.values())), len(ms.SEED_INDEX))
         self.assertEqual(set(ms.SEED_INDEX), set(ms.SUITES))
 
@@ -101,6 +107,130 @@ class Suites(unittest.TestCase):
         ys, xs = np.mgrid[0:480, 0:640].astype(np.float32)
         back = cv2.remap(frames["paper-hd"], xs * 1.5 + 160.25, ys * 1.5 + 0.25, cv2.INTER_LINEAR)
         self.assertLess(np.mean(np.abs(back.astype(float) - frames["paper"])), 5.0)
+
+    def test_copies_apart_and_where_the_truth_says(self):
+        spec = ms.SUITES["copies"]
+        memory = ms.memory_of(spec["memory"], self.classes, MPEG7)
+        with tempfile.TemporaryDirectory() as tmp:
+            for index in range(2):
+                path = os.path.join(tmp, "seq_%03d" % index)
+                os.makedirs(path)
+                ms.render_sequence(path, "copies", index, spec, memory, self.classes, MPEG7, 12, 1)
+                with open(os.path.join(path, "truth.json")) as f:
+                    truth = json.load(f)
+                labels = {o["label"] for frame in truth["frames"] for o in frame["objects"]}
+                self.assertEqual(len(labels), 1)
+                mask = cv2.imread(memory[labels.pop()], cv2.IMREAD_GRAYSCALE)
+                for k in (0, 11):
+                    objects = truth["frames"][k]["objects"]
+                    self.assertTrue(4 <= len(objects) <= 6, len(objects))
+                    grey = cv2.imread(os.path.join(path, "frames", "frame_%04d.png" % k), cv2.IMREAD_GRAYSCALE)
+                    self.check_copies(grey, mask, [np.asarray(o["prototype_to_image"]) for o in objects],
+                                      truth["inverted"])
+
+    def check_copies(self, grey, mask, poses, inverted):
+        shapes = [cv2.warpAffine(mask, p, (ms.WIDTH, ms.HEIGHT), flags=cv2.INTER_NEAREST) > 127 for p in poses]
+        for i in range(len(shapes)):
+            for j in range(i):
+                self.assertFalse(np.any(shapes[i] & shapes[j]), "copies %d and %d overlap" % (j, i))
+        disc = lambda r: cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * r + 1, 2 * r + 1))
+        anywhere = cv2.dilate(np.any(shapes, 0).astype(np.uint8), disc(3)) > 0
+        for i, shape in enumerate(shapes):
+            # Inside the copy (eroded) against a ring around it that no copy touches: the print's ink
+            # against the clutter, darker (lighter when the print is inverted) by 25 grey levels at least.
+            inside = cv2.erode(shape.astype(np.uint8), disc(2)) > 0
+            ring = (cv2.dilate(shape.astype(np.uint8), disc(9)) > 0) & ~anywhere
+            contrast = float(np.median(grey[ring])) - float(np.median(grey[inside]))
+            self.assertGreater(-contrast if inverted else contrast, 25.0, "copy %d" % i)
+
+
+PHOTO = os.path.join(ms.PHOTO_DIR, ms.PART_PHOTOS[0][0])
+
+
+@unittest.skipUnless(os.path.isfile(PHOTO), "no %s: install the Debian package opencv-doc" % PHOTO)
+class RealPhotos(unittest.TestCase):
+    def test_six_parts_where_the_truth_says(self):
+        prototype, photo, instances = ms.cut_part(PHOTO)
+        self.assertEqual(len(instances), 6)
+        self.assertEqual(set(np.unique(prototype)), {0, 255})
+        self.assertEqual(prototype[0, 0], 0)  # white shape on black, the centroid at the centre
+        self.assertEqual(prototype[prototype.shape[0] // 2, prototype.shape[1] // 2], 255)
+        with tempfile.TemporaryDirectory() as tmp:
+            ms.render_photo(tmp, "real-photos", 0, 6, 1)
+            with open(os.path.join(tmp, "truth.json")) as f:
+                truth = json.load(f)
+            self.assertTrue(truth["approximate"])
+            for k in (0, 5):
+                grey = cv2.imread(os.path.join(tmp, "frames", "frame_%04d.png" % k), cv2.IMREAD_GRAYSCALE)
+                self.assertEqual(grey.shape, (ms.HEIGHT, ms.WIDTH))
+                objects = truth["frames"][k]["objects"]
+                self.assertEqual(len(objects), 6)
+                threshold, _ = cv2.threshold(grey, 0, 255, cv2.THRESH_BINARY | cv2.THRESH_OTSU)
+                centres = np.array([o["center"] for o in objects])
+                for o, (x, y) in zip(objects, centres):
+                    self.assertTrue(o["approximate"])
+                    self.assertLess(grey[int(round(y)), int(round(x))], threshold)  # on a dark part
+                    # The approximate affine lays the prototype on the part: mostly dark pixels.
+                    shape = cv2.warpAffine(prototype, np.asarray(o["prototype_to_image"]), (ms.WIDTH, ms.HEIGHT),
+                                           flags=cv2.INTER_NEAREST) > 127
+                    self.assertGreater(np.mean(grey[shape] < threshold), 0.9)
+                distances = np.linalg.norm(centres[:, None] - centres[None], axis=2) + 1e9 * np.eye(6)
+                self.assertGreater(distances.min(), 30.0)  # six different parts
+
+
+def copy_at(label, x, y, size=(100, 50)):
+    """A truth object or a report: the prototype of `size` with its centre moved to (x, y)."""
+    w, h = size
+    return {"label": label, "prototype_to_image": [[1.0, 0.0, x - (w - 1) / 2.0], [0.0, 1.0, y - (h - 1) / 2.0]]}
+
+
+class InstanceMatching(unittest.TestCase):
+    sizes = {"cup": (100, 50), "dog": (100, 50)}
+
+    def test_one_of_two_copies_found_is_half(self):
+        truth = [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]
+        found = report.match_instances(truth, [copy_at("cup", 305, 104)], self.sizes)
+        self.assertEqual(found, [None, 0])
+        # The radius: max(10 px, 0.3 x 100 px) = 30 px; 31 px away finds nothing.
+        self.assertEqual(report.match_instances(truth, [copy_at("cup", 331, 100)], self.sizes), [None, None])
+
+    def test_a_wrong_label_does_not_count(self):
+        truth = [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]
+        self.assertEqual(report.match_instances(truth, [copy_at("dog", 100, 100)], self.sizes), [None, None])
+
+    def test_one_report_finds_one_instance(self):
+        truth = [copy_at("cup", 100, 100), copy_at("cup", 120, 100)]  # both within 30 px of the report
+        found = report.match_instances(truth, [copy_at("cup", 110, 100)], self.sizes)
+        self.assertEqual(sorted(found, key=str), [0, None])
+        # Two reports: each instance its own, even when the first report is nearer the second instance.
+        found = report.match_instances(truth, [copy_at("cup", 118, 100), copy_at("cup", 135, 100)], self.sizes)
+        self.assertEqual(found, [0, 1])
+
+    def test_sequence_figures_and_track_ids(self):
+        truth = {"frames": [{"frame": k, "objects": [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]}
+                            for k in range(4)]}
+        both = [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]
+        rows = {0: {"objects": both[:1]}, 1: {"objects": both}, 2: {"objects": both}, 3: {"objects": both}}
+        s = report.instance_sequence(truth, rows, self.sizes)
+        self.assertEqual(s["shares"], {1: 0.5, 2: 1.0, 3: 1.0, 4: 1.0})
+        self.assertEqual(s["at"], 4)  # 60, or the last frame when shorter
+        self.assertTrue(s["all_at"] and s["held"])
+        m = report.instance_summary([s])
+        self.assertAlmostEqual(m["found_share"], 3.5 / 4)
+        self.assertNotIn("tracks_per_instance", m)  # no track ids reported: no fragmentation figure
+        tracked = [dict(o, track_id=t, state="confirmed") for o, t in zip(both, (7, 8))]
+        rows = {k: {"objects": tracked} for k in range(4)}
+        rows[2] = {"objects": [dict(tracked[0], track_id=9), tracked[1]]}  # copy 0 lost and found again
+        m = report.instance_summary([report.instance_sequence(truth, rows, self.sizes)])
+        self.assertAlmostEqual(m["tracks_per_instance"], 1.5)
+        self.assertEqual(m["states"], {"confirmed": 1.0})
+
+    def test_held_needs_ninety_percent_after_frame_60(self):
+        truth = {"frames": [{"frame": k, "objects": [copy_at("cup", 100, 100)]} for k in range(80)]}
+        rows = {k: {"objects": [copy_at("cup", 100, 100)] if k < 60 or k % 5 else []} for k in range(80)}
+        s = report.instance_sequence(truth, rows, self.sizes)  # found at frame 60, in 16 of the 20 after it
+        self.assertTrue(s["all_at"])
+        self.assertFalse(s["held"])
 
 
 if __name__ == "__main__":
