@@ -30,10 +30,11 @@ Definitions (frames are numbered from 1):
   frame 60 (at the last frame when shorter) and the median over sequences of the frames to the first
   correct report (the first frame whose best-scored report has the target's label; never = inf).
 - instances (`two-objects`, `copies`, `real-photos`; issue 15): per frame, every truth instance is
-  matched one-to-one to a report of its label whose outline centre (the prototype's centre mapped by
-  the reported affine) lies within max(10 px, 0.3 x the instance's size: the prototype's longer side
-  times the truth affine's scale) of the instance's centre (the truth's "center", else the prototype's
-  centre mapped by the truth affine); the matching has the most pairs. Metrics: the mean share of
+  matched one-to-one to a report of its label whose outline centre (the centroid of the prototype's
+  silhouette mapped by the reported affine, so that a shape that looks the same turned, as a brick,
+  reported turned is still at its centre) lies within max(10 px, 0.3 x the instance's size: the
+  prototype's longer side times the truth affine's scale) of the instance's centre (the truth's
+  "center", else that centroid mapped by the truth affine); the matching has the most pairs. Metrics: the mean share of
   instances found per frame (all frames; frames >= 60, or the last frame when shorter), the share of
   sequences with all instances found at frame 60 (the last when shorter), and all found and held:
   all found at that frame and in at least 90% of the frames after it. When reports carry "track_id":
@@ -133,10 +134,12 @@ def evaluate_sequence(truth, rows, sizes, geometry):
     return frames
 
 
-def centre_of(matrix, size):
-    """The prototype's centre (of its image of `size` = (w, h)) mapped by a prototype->image affine."""
+def centre_of(matrix, size, point=None):
+    """A prototype point (default: the centre of its image of `size` = (w, h)) mapped by a
+    prototype->image affine."""
     w, h = size
-    return affine(matrix) @ np.array([(w - 1) / 2.0, (h - 1) / 2.0, 1.0])
+    x, y = ((w - 1) / 2.0, (h - 1) / 2.0) if point is None else point
+    return affine(matrix) @ np.array([x, y, 1.0])
 
 
 def instance_size(matrix, size):
@@ -144,22 +147,25 @@ def instance_size(matrix, size):
     return max(size) * math.sqrt(abs(np.linalg.det(affine(matrix)[:, :2])))
 
 
-def match_instances(objects, reported, sizes):
+def match_instances(objects, reported, sizes, centres=None):
     """One-to-one matching of a frame's truth instances to the reports: a report may find an instance
     of its own label whose centre ("center" when the truth gives it, else the prototype's centre
     mapped by the truth's affine) is within max(10 px, 0.3 x the instance's size) of the report's
-    outline centre (the prototype's centre mapped by the reported affine). The matching has the most
-    pairs (augmenting paths, nearer reports tried first). Returns per instance its report's index
-    in `reported`, or None."""
+    outline centre (the prototype's centre mapped by the reported affine). The prototype's centre is
+    `centres[label]` when given (the report uses the silhouette's centroid: a shape that looks the
+    same turned, as a brick, then has its centre where it is), else the middle of its image. The
+    matching has the most pairs (augmenting paths, nearer reports tried first). Returns per instance
+    its report's index in `reported`, or None."""
     candidates = []
     for o in objects:
         if "prototype_to_image" not in o:
             candidates.append([])
             continue
-        size = sizes[o["label"]]
-        centre = np.asarray(o["center"], dtype=np.float64) if "center" in o else centre_of(o["prototype_to_image"], size)
+        size, point = sizes[o["label"]], (centres or {}).get(o["label"])
+        centre = np.asarray(o["center"], dtype=np.float64) if "center" in o else \
+            centre_of(o["prototype_to_image"], size, point)
         radius = max(INSTANCE_RADIUS[0], INSTANCE_RADIUS[1] * instance_size(o["prototype_to_image"], size))
-        near = [(float(np.linalg.norm(centre_of(r["prototype_to_image"], size) - centre)), j)
+        near = [(float(np.linalg.norm(centre_of(r["prototype_to_image"], size, point) - centre)), j)
                 for j, r in enumerate(reported) if r["label"] == o["label"]]
         candidates.append([j for d, j in sorted(near) if d <= radius])
     owner = {}  # report index -> instance index
@@ -181,7 +187,7 @@ def match_instances(objects, reported, sizes):
     return found
 
 
-def instance_sequence(truth, rows, sizes):
+def instance_sequence(truth, rows, sizes, centres=None):
     """Instance-level figures of one method on one sequence: per frame run (1-based, frames with
     objects in view and a known truth) the share of instances found and whether all are; "all found
     at frame 60" (the last frame when shorter), "all found and held" (that, and all found in at least
@@ -195,7 +201,7 @@ def instance_sequence(truth, rows, sizes):
         if k not in rows or t.get("unknown") or not t["objects"]:
             continue
         reported = rows[k]["objects"]
-        found = match_instances(t["objects"], reported, sizes)
+        found = match_instances(t["objects"], reported, sizes, centres)
         shares[k + 1] = sum(j is not None for j in found) / len(found)
         all_found[k + 1] = all(j is not None for j in found)
         for i, j in enumerate(found):
@@ -212,10 +218,13 @@ def instance_sequence(truth, rows, sizes):
 def instance_metrics(out, suite, methods):
     """method -> instance-level metrics over a suite's sequences (instance_sequence)."""
     seq_dir = os.path.join(out, "sequences", suite)
-    sizes = {}
+    sizes, centres = {}, {}
     for p in glob.glob(os.path.join(seq_dir, "prototypes", "*.png")):
         image = cv2.imread(p, cv2.IMREAD_GRAYSCALE)
-        sizes[os.path.splitext(os.path.basename(p))[0]] = (image.shape[1], image.shape[0])
+        label = os.path.splitext(os.path.basename(p))[0]
+        sizes[label] = (image.shape[1], image.shape[0])
+        m = cv2.moments((image > 127).astype(np.uint8), True)
+        centres[label] = (m["m10"] / m["m00"], m["m01"] / m["m00"])  # the silhouette's centroid
     metrics = {}
     for method in methods:
         per_seq = []
@@ -223,7 +232,7 @@ def instance_metrics(out, suite, methods):
             result = os.path.join(out, "results", suite, "%s.%s.jsonl" % (os.path.basename(os.path.dirname(path)), method))
             if os.path.exists(result):
                 with open(path) as f:
-                    per_seq.append(instance_sequence(json.load(f), read_jsonl(result), sizes))
+                    per_seq.append(instance_sequence(json.load(f), read_jsonl(result), sizes, centres))
         if per_seq:
             metrics[method] = instance_summary(per_seq)
     return metrics
@@ -252,7 +261,7 @@ def instance_table(metrics):
     methods = [m for m in METHODS if m in metrics]
     at = min(metrics[m]["at"] for m in methods)
     lines = ["Instances (issue 15): per frame, each instance in view is matched to at most one report of its label "
-             "whose outline centre is within max(%g px, %g x the instance's size) of the instance's centre, one "
+             "whose outline centre (its silhouette's centroid) is within max(%g px, %g x the instance's size) of the instance's centre, one "
              "report to one instance at most. All found and held: all instances found at frame %d and in at least "
              "%d%% of the frames after it." % (INSTANCE_RADIUS[0], INSTANCE_RADIUS[1], at, 100 * INSTANCE_HOLD), "",
              "| | " + " | ".join(METHOD_NAMES[m] for m in methods) + " |", "|---" * (len(methods) + 1) + "|"]

@@ -206,6 +206,15 @@ class InstanceMatching(unittest.TestCase):
         found = report.match_instances(truth, [copy_at("cup", 118, 100), copy_at("cup", 135, 100)], self.sizes)
         self.assertEqual(found, [0, 1])
 
+    def test_a_shape_reported_turned_is_at_its_centroid(self):
+        # A brick drawn off the middle of its 100x50 image, its centroid at (20, 24.5), in the image at
+        # (170.5, 100): reported turned by half a turn about its centroid, the image's middle lands at
+        # (141, 100), 59 px from where the truth has it, the centroid in place.
+        truth = [copy_at("cup", 200, 100)]
+        turned = {"label": "cup", "prototype_to_image": [[-1.0, 0.0, 170.5 + 20], [0.0, -1.0, 100 + 24.5]]}
+        self.assertEqual(report.match_instances(truth, [turned], self.sizes), [None])
+        self.assertEqual(report.match_instances(truth, [turned], self.sizes, {"cup": (20.0, 24.5)}), [0])
+
     def test_sequence_figures_and_track_ids(self):
         truth = {"frames": [{"frame": k, "objects": [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]}
                             for k in range(4)]}
