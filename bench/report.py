@@ -733,7 +733,8 @@ moving together (drift, slow spin, breathing scale) over the `paper` clutter. `r
 15): opencv-doc's photo `pca_test1.jpg` (six alike dark parts on a backlit panel) under a synthetic
 camera motion (drift, slow turn and zoom) with mild noise; memory: the part cut from the photo
 (Otsu, the component of median area) and 16 of the paper memory; its truth affines are approximate
-(from the parts' moments), their centres are the parts' centroids.
+(from the parts' moments), their centres are the parts' centroids. The Hu-moments baseline's affine
+comes from moments too, so its affine error there says how alike the two are, not how right.
 Frames are numbered from 1.
 """
 
