@@ -179,7 +179,9 @@ TEST(KldSampling, TheCountFallsAsTheParticlesConvergeAndStaysInItsBounds)
     }
     EXPECT_DOUBLE_EQ(result.mean_m_particles, filter.meanMParticles());
     if (k == 0)
+    {
       EXPECT_EQ(result.mean_m_particles, p.m_particles_per_v);  // the first update of a fresh V-particle
+    }
   }
   ASSERT_GT(converged_n, 100) << "too few converged V-particles to test";
   ASSERT_GT(spread_n, 100);

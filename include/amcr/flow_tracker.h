@@ -22,7 +22,8 @@ namespace amcr
 class FlowTracker
 {
 public:
-  /// Reads flow_window, flow_levels and flow_max_error.
+  /// Reads flow_window, flow_levels, flow_max_error and the life cycle's
+  /// thresholds (LifecycleRule).
   explicit FlowTracker(const Params& params);
 
   /// Takes the next frame (8-bit grey).
@@ -36,8 +37,16 @@ public:
   /// `image_size` bounds the moves with a track. Call when ready().
   std::vector<VParticleMove> follow(const std::vector<VParticle>& v, const cv::Size& image_size);
 
-  /// Sets the objects' track ids and makes them the tracks of the next frame.
-  void assign(std::vector<RecognizedObject>& objects) { tracks_.assign(objects); }
+  /// Sets the objects' track ids and states, and appends the tracks that
+  /// ended to `ended` (TrackRegistry::assign; `image`: the frame's size).
+  void assign(std::vector<RecognizedObject>& objects, const cv::Size& image, std::vector<RecognizedObject>& ended)
+  {
+    tracks_.assign(objects, image, ended);
+  }
+
+  /// Counts every track as followed into the frame without moving it (no
+  /// optical flow: a static scene).
+  void holdStill() { tracks_.followAll(); }
 
   const TrackRegistry& tracks() const { return tracks_; }
 

@@ -100,6 +100,13 @@ struct Params
   double decision_threshold = 0.75;   ///< smallest score reported [0, 1]
   double min_object_size = 64.0;      ///< smallest object reported: longer side of its outline's box, input px [0, 4000]
 
+  // Objects: life cycle and attention (track_registry.h).
+  int confirm_frames = 3;    ///< frames an object is reported in before it is confirmed [1, 1000]
+  int lost_frames = 5;       ///< frames in a row without a report after which a track ends [1, 1000]
+  int max_objects = 16;      ///< tracks kept at once; no new object is reported beyond [1, 256]
+  int held_v_particles = 3;  ///< V-particles a held object keeps at V-resampling [0, 5000]
+  double scene_prior_share = 0.25;  ///< share of new M-particles drawn in the held objects' prototypes [0, 1]
+
   // Tracking (spec "Tracking") and the time per frame.
   bool optical_flow = true;        ///< V-particles ride pyramidal Lucas-Kanade flow between frames
   int flow_window = 21;            ///< side of the Lucas-Kanade window, working px [5, 101]

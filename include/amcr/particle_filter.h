@@ -47,6 +47,16 @@ struct EvidenceBonus
   double log_weight = 0.0;
 };
 
+/// An object that the tracker holds: what attention may leave alone.
+struct HeldObject
+{
+  int prototype = -1;                ///< index into the memory
+  std::vector<cv::Point2d> outline;  ///< px of the filter's image
+  /// The V-particles that support it (V indices, valid until the next
+  /// V-resampling), wherever they are.
+  std::vector<int> v_particles;
+};
+
 class ParticleFilter
 {
 public:
@@ -91,6 +101,21 @@ public:
   /// copies, or -1 when it was seeded afresh.
   std::vector<int> resampleV(const RadialScanner& scanner, const std::vector<std::vector<int>>& object_v_particles);
 
+  /// The objects held in this frame (track_registry.h), replacing the last
+  /// ones: no V-particle is seeded inside the convex hull of a held object's
+  /// outline (inhibition of return), and V-resampling keeps at most
+  /// params.held_v_particles of the V-particles on each (those inside the
+  /// hull and those that support it), so that the rest look at what is not
+  /// explained yet. A share params.scene_prior_share of the M-particles
+  /// seeded from then on is drawn in the held objects' prototypes (the
+  /// scene's context: copies of what is in view are likely; not in a
+  /// prototype whose prior is 0). InputError, before anything changes, for a
+  /// prototype index outside the memory.
+  void setHeldObjects(const std::vector<HeldObject>& held);
+  /// Index (in the last setHeldObjects) of the held object whose outline's
+  /// convex hull holds (x, y), or -1.
+  int heldObjectAt(float x, float y) const;
+
   /// Moves the V-particles by the optical flow (one move per V-particle, in
   /// index order); a lost one is seeded afresh with new M-particles. Returns
   /// how many were lost.
@@ -126,6 +151,16 @@ public:
 
 private:
   void seedV(VParticle& v, const RadialScanner& scanner);
+  /// The prototype of a new M-particle whose prior slot is `slot`: with
+  /// probability scene_prior_share (when objects are held) a held object's
+  /// prototype, else `slot`.
+  int scenePrototype(int slot);
+  /// The probability that a new M-particle is in prototype p: the context
+  /// prior mixed with the held objects' prototypes (scenePrototype).
+  double seedingProbability(int p) const;
+  /// A uniform place in the image outside the held objects (inside one only
+  /// when they cover the whole image).
+  cv::Point2f drawFreePlace();
   void seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const VParticle& v);
   /// A new M-particle: with probability index_share (when the V-particle's
   /// query found places) at one of them, else uniformly in `prototype` as
@@ -156,6 +191,11 @@ private:
   /// `h` implies for V-particle `v`, with likelihood `worst`.
   void injectM(const VParticle& v, const LeadingHypothesis& h, std::size_t index, float worst);
   std::vector<double> attentionWeights(const std::vector<std::vector<int>>& object_v_particles) const;
+  /// The V-particles V-resampling carries over unchanged: of those on each
+  /// held object (inside its hull or supporting it), the held_v_particles
+  /// with the highest `log_weights`. Every V-particle on a held object gets
+  /// log weight -inf (it is not drawn).
+  std::vector<int> keepOnHeldObjects(std::vector<double>& log_weights) const;
 
   Params params_;
   std::shared_ptr<const PrototypeMemory> memory_;
@@ -176,5 +216,9 @@ private:
   std::vector<ProposalCandidate> candidates_;  // of the V-particle being seeded or updated
   std::vector<int> m_count_;                   // M-particles each V-particle holds
   std::vector<std::uint64_t> kld_bins_;
+  cv::Mat held_mask_;  // CV_16UC1 of image_size_: 0 free, k + 1 inside held object k's hull; empty: none held
+  std::vector<std::vector<int>> held_v_;  // each held object's supporting V-particles
+  std::vector<int> held_prototypes_;      // each held object's prototype
+  int held_count_ = 0;
 };
 }  // namespace amcr

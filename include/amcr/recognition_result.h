@@ -18,11 +18,26 @@ struct Correspondence
   cv::Point2d prototype;  ///< px of the original prototype image
 };
 
+/// Where an object is in its life cycle (track_registry.h): first seen,
+/// verified over frames, followed by the tracker (its V-particles released
+/// to look elsewhere), or gone.
+enum class ObjectState
+{
+  kTentative,  ///< reported in fewer than params.confirm_frames frames
+  kConfirmed,  ///< reported in params.confirm_frames frames or more
+  kHeld,       ///< confirmed, and the tracker followed it into this frame
+  kLost,       ///< its track ended in this frame (RecognitionResult::lost only)
+};
+
+/// "tentative", "confirmed", "held", "lost".
+std::string toString(ObjectState state);
+
 struct RecognizedObject
 {
   std::string label;
   int prototype_id = -1;  ///< index into the memory
   int track_id = 0;       ///< stable while the object stays recognized, never reused in a run
+  ObjectState state = ObjectState::kTentative;  ///< where the object is in its life cycle
   /// Share of the prototype's outline found on image edges after the fit
   /// (the homography's when homography_valid, else the affine's), in [0, 1].
   double score = 0.0;
@@ -51,6 +66,11 @@ struct RecognizedObject
   std::vector<cv::Point2d> outline;
 };
 
+/// Maps the image side of `object` by an affine of the image (a motion
+/// between frames, a change of resolution): outline, correspondences'
+/// image points, both affines, the homography, anisotropy and viewing angle.
+void mapImageSide(RecognizedObject& object, const Affine& image_map);
+
 /// The result of one Recognizer::step. Consumers take it as it is: the
 /// objects are in their order, and time_ms is the step's time.
 struct RecognitionResult
@@ -65,7 +85,12 @@ struct RecognitionResult
   double mean_m_particles = 0.0;  ///< M-particles per V-particle, mean (KLD-sampling adapts it)
   /// Only objects at or above the decision threshold, best score first (of
   /// equal scores, the one found first); no two outlines overlap by more
-  /// than half (intersection over union).
+  /// than 0.3 (intersection over union).
   std::vector<RecognizedObject> objects;
+  /// The tracks that ended in this step (state kLost): their outline gone
+  /// for params.lost_frames frames in a row, or their centre left the image.
+  /// Each as last reported, moved by the optical flow since; its track id
+  /// is not reported again.
+  std::vector<RecognizedObject> lost;
 };
 }  // namespace amcr

@@ -1,42 +1,80 @@
-// The objects of the last frame and their track ids. An object keeps its id
-// while it stays recognized: it is associated with the previous frame's
-// object of the same prototype whose outline, moved by the optical flow,
-// overlaps it most. Ids are never reused within the registry's life.
+// The objects' life cycle in one place (issue 15): each reported object
+// continues a track or starts one; a track is tentative when first seen,
+// confirmed once reported in params.confirm_frames frames, held while it is
+// confirmed, the tracker follows it and its score is at least the decision
+// threshold (its V-particles may then look elsewhere; one that is reported
+// only by the tracking hysteresis gets them back), and lost when its outline has been gone for params.lost_frames
+// frames in a row or its centre left the image. Between, a track that is
+// not reported coasts: the optical flow moves it and the next fit starts
+// from it, and it keeps its id when it is found again. An object continues
+// the track of its prototype whose outline (moved by the flow) overlaps it
+// most. Ids are never reused within the registry's life.
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "amcr/affine.h"
+#include "amcr/params.h"
 #include "amcr/recognition_result.h"
 
 namespace amcr
 {
-/// One object of the last frame.
+/// The thresholds of the life cycle (from Params).
+struct LifecycleRule
+{
+  int confirm_frames = 3;   ///< reports that make a tentative object confirmed
+  int lost_frames = 5;      ///< frames in a row without a report that end a track
+  int max_objects = 16;     ///< tracks kept at once, coasting ones included
+  double min_overlap = 0.3; ///< outline overlap (intersection over union) that continues a track
+  double hold_score = 0.75; ///< score a confirmed object needs to be held (params.decision_threshold)
+
+  LifecycleRule() = default;
+  explicit LifecycleRule(const Params& params);
+};
+
+/// One object: as last reported (outline and pose moved by the flow since),
+/// with its life-cycle record.
 struct Track
 {
-  int id = 0;
-  int prototype_id = -1;
-  Affine prototype_to_image;          ///< original prototype px -> input px
-  std::vector<cv::Point2d> outline;   ///< input px
+  RecognizedObject object;  ///< working px; track_id and state are the track's
+  int reports = 0;          ///< frames in which it was reported
+  int misses = 0;           ///< frames in a row without a report (coasting)
+  bool followed = false;    ///< the tracker moved it into the current frame
 };
 
 class TrackRegistry
 {
 public:
-  /// `min_overlap`: the outline overlap (intersection over union) an object
-  /// needs with a previous one to continue its track.
-  explicit TrackRegistry(double min_overlap = 0.3) : min_overlap_(min_overlap) {}
+  explicit TrackRegistry(const LifecycleRule& rule = LifecycleRule()) : rule_(rule) {}
 
-  /// Sets track_id of every object (a continued track's id, else a new one)
-  /// and makes `objects` the tracks of the next frame.
+  /// Sets the track id and the state of every object (a continued track's
+  /// id, else a new one), counts a miss for every track no object continues,
+  /// and ends the tracks that are lost: missed lost_frames times in a row,
+  /// or (when `image` is not empty) with their outline's centre outside it.
+  /// The ended tracks' objects, in state kLost, are appended to `ended`.
+  void assign(std::vector<RecognizedObject>& objects, const cv::Size& image, std::vector<RecognizedObject>& ended);
+  /// The same without the image test, dropping the ended tracks.
   void assign(std::vector<RecognizedObject>& objects);
 
-  /// Whether `object` would continue a track of the previous frame.
-  bool continues(const RecognizedObject& object) const;
+  /// The track `object` would continue, or null.
+  const Track* continued(const RecognizedObject& object) const;
+  /// Whether `object` would continue a track.
+  bool continues(const RecognizedObject& object) const { return continued(object) != nullptr; }
+  /// Whether a new object may start a track: fewer than max_objects are kept.
+  bool hasRoom(int new_tracks = 0) const
+  {
+    return static_cast<int>(tracks_.size()) + new_tracks < rule_.max_objects;
+  }
 
   /// Moves track `index` by an image motion between frames (its prediction
-  /// from the optical flow).
+  /// from the optical flow); the track counts as followed into the frame.
   void move(std::size_t index, const Affine& motion);
+  /// Counts every track as followed without a motion (a static scene: the
+  /// recognizer runs without optical flow).
+  void followAll();
 
   const std::vector<Track>& tracks() const { return tracks_; }
 
@@ -44,11 +82,11 @@ public:
   void clear();
 
 private:
-  /// Index of the previous frame's track `object` continues, or -1; tracks
-  /// marked in `taken` are not considered.
+  /// Index of the track `object` continues, or -1; tracks marked in `taken`
+  /// are not considered.
   int match(const RecognizedObject& object, const std::vector<bool>& taken) const;
 
-  double min_overlap_;
+  LifecycleRule rule_;
   int next_id_ = 1;
   std::vector<Track> tracks_;
 };
@@ -56,4 +94,7 @@ private:
 /// Intersection over union of the areas two closed outlines enclose (both
 /// rasterised on a common grid of at most 64 x 64 cells).
 double outlineOverlap(const std::vector<cv::Point2d>& a, const std::vector<cv::Point2d>& b);
+
+/// The centre of the box around an outline (0, 0 for none).
+cv::Point2d outlineCentre(const std::vector<cv::Point2d>& outline);
 }  // namespace amcr

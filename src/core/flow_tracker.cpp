@@ -56,7 +56,8 @@ VParticleMove moveWithTrack(const VParticle& v, const Affine& m, const cv::Size&
 }
 }  // namespace
 
-FlowTracker::FlowTracker(const Params& params) : flow_(params.flow_window, params.flow_levels, params.flow_max_error)
+FlowTracker::FlowTracker(const Params& params)
+  : flow_(params.flow_window, params.flow_levels, params.flow_max_error), tracks_(LifecycleRule(params))
 {
 }
 
@@ -74,10 +75,10 @@ std::vector<VParticleMove> FlowTracker::follow(const std::vector<VParticle>& v, 
   std::vector<TrackMotion> motions(tracks.size());
   for (std::size_t k = 0; k < tracks.size(); ++k)
   {
-    const std::vector<cv::Point2f> from = sampleOutline(tracks[k].outline, kOutlineFlowPoints);
+    const std::vector<cv::Point2f> from = sampleOutline(tracks[k].object.outline, kOutlineFlowPoints);
     const int min_inliers = std::max(kMinTrackInliers, static_cast<int>(std::ceil(kMinTrackInlierShare * from.size())));
     motions[k].moved = estimatePatchMotion(from, flow_.track(from), min_inliers, motions[k].motion);
-    for (const auto& p : tracks[k].outline)
+    for (const auto& p : tracks[k].object.outline)
       motions[k].outline.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
   }
 

@@ -20,7 +20,10 @@ constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the
 constexpr double kKeepTrackRatio = 0.65;           // a tracked object stays at this share of the decision threshold
 constexpr double kTrackDistance = 40.0;            // px an object's centre may move between frames and keep its track
 constexpr double kVerificationGain = 4.0;          // log-weight per unit of outline score above 0.5 (V-resampling)
-constexpr double kSameObjectOverlap = 0.5;         // outlines overlapping more are one object: the better is kept
+// Outlines overlapping more are one object: the better is kept. Below a half
+// (an elongated part found twice, slid along its axis, overlaps itself by a
+// third); touching copies overlap by next to nothing.
+constexpr double kSameObjectOverlap = 0.3;
 constexpr double kLeadingScoreRatio = 0.5;         // a leading hypothesis scores at least this share of the threshold
 constexpr std::size_t kMaxPerspectiveFits = 3;     // best candidates per frame that may get a homography
 
@@ -126,39 +129,56 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
 // previous frame (recognition and tracking run together: a pose, once
 // fitted, is moved by the flow and refined on, not found again). A group near
 // a previous object of its prototype tries both and keeps the better fit.
+// Groups on held objects, which their tracks already start from, come last
+// in the verification's limit, so that the unexplained ones get it.
 std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& registry)
 {
   // Every group is verified, even a single V-particle's: one that passes
   // seeds the others through injection before it has the support to be reported.
   std::vector<ObjectHypothesis> hypotheses = groupClusters(in.filter.vParticles(), in.clusters, in.params, 1);
-  if (hypotheses.size() > kMaxVerifiedHypotheses)
-    hypotheses.resize(kMaxVerifiedHypotheses);
-
-  std::vector<FitStart> starts;
   const std::vector<Track>& tracks = registry.tracks();
   std::vector<Affine> track_affines;  // each track's table -> image affine, moved by the flow
   for (const Track& t : tracks)
-    track_affines.push_back(composeAffine(in.memory[t.prototype_id].tableToOriginal(), t.prototype_to_image));
-  std::vector<bool> track_used(tracks.size(), false);
-  for (const auto& h : hypotheses)
-  {
-    FitStart start{h.prototype, {h.table_to_image}};
+    track_affines.push_back(
+        composeAffine(in.memory[t.object.prototype_id].tableToOriginal(), t.object.prototype_to_image));
+  // The tracks of h's prototype whose centre is near h's.
+  const auto nearTracks = [&](const ObjectHypothesis& h) {
+    std::vector<std::size_t> near;
     const cv::Point2d centre = applyAffine(h.table_to_image, in.memory[h.prototype].centre());
     for (std::size_t k = 0; k < tracks.size(); ++k)
     {
       const cv::Point2d track_centre = applyAffine(track_affines[k], in.memory[h.prototype].centre());
-      if (tracks[k].prototype_id == h.prototype &&
+      if (tracks[k].object.prototype_id == h.prototype &&
           std::hypot(centre.x - track_centre.x, centre.y - track_centre.y) <= kTrackDistance)
-      {
-        start.affines.push_back(track_affines[k]);
-        track_used[k] = true;
-      }
+        near.push_back(k);
+    }
+    return near;
+  };
+  const auto onHeld = [&](const ObjectHypothesis& h) {
+    for (std::size_t k : nearTracks(h))
+      if (tracks[k].object.state == ObjectState::kHeld)
+        return true;
+    return false;
+  };
+  std::stable_partition(hypotheses.begin(), hypotheses.end(), [&](const ObjectHypothesis& h) { return !onHeld(h); });
+  if (hypotheses.size() > kMaxVerifiedHypotheses)
+    hypotheses.resize(kMaxVerifiedHypotheses);
+
+  std::vector<FitStart> starts;
+  std::vector<bool> track_used(tracks.size(), false);
+  for (const auto& h : hypotheses)
+  {
+    FitStart start{h.prototype, {h.table_to_image}};
+    for (std::size_t k : nearTracks(h))
+    {
+      start.affines.push_back(track_affines[k]);
+      track_used[k] = true;
     }
     starts.push_back(std::move(start));
   }
   for (std::size_t k = 0; k < tracks.size(); ++k)
     if (!track_used[k])
-      starts.push_back({tracks[k].prototype_id, {track_affines[k]}});
+      starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}});
   return starts;
 }
 
@@ -242,24 +262,30 @@ std::vector<LeadingHypothesis> leadingHypotheses(const ExtractionInput& in, cons
   return leading;
 }
 
-/// Reports what passes the decision threshold; of two overlapping objects the better one.
+/// Reports what passes the decision threshold; of two overlapping objects
+/// the better one; a new object only while the registry has room (max_objects).
 void report(const Params& params, const TrackRegistry& registry, std::vector<Candidate>& candidates,
             Extraction& extraction)
 {
+  int new_tracks = 0;
   for (auto& candidate : candidates)
   {
     const RecognizedObject& c = candidate.object;
-    // Hysteresis: an object recognized in the previous frame stays while its
-    // score keeps above a share of the threshold and one V-particle supports it.
-    const bool tracked = registry.continues(c);
-    const double threshold = params.decision_threshold * (tracked ? kKeepTrackRatio : 1.0);
-    if (c.score < threshold || c.support < (tracked ? 1 : params.min_support))
+    // Hysteresis: an object of the previous frames stays while its score
+    // keeps above a share of the threshold; one V-particle must support it
+    // while it is tentative; once confirmed, the tracker and the edges
+    // follow it alone.
+    const Track* track = registry.continued(c);
+    const double threshold = params.decision_threshold * (track ? kKeepTrackRatio : 1.0);
+    const int support = !track ? params.min_support : track->object.state == ObjectState::kTentative ? 1 : 0;
+    if (c.score < threshold || c.support < support || (!track && !registry.hasRoom(new_tracks)))
       continue;
     bool suppressed = false;
     for (const auto& kept : extraction.objects)
       suppressed = suppressed || outlineOverlap(c.outline, kept.outline) > kSameObjectOverlap;
     if (suppressed)
       continue;
+    new_tracks += track ? 0 : 1;
     extraction.objects.push_back(std::move(candidate.object));
     extraction.feedback.object_v_particles.push_back(std::move(candidate.v_particles));
   }

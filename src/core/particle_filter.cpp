@@ -9,6 +9,8 @@
 #include <limits>
 #include <string>
 
+#include <opencv2/imgproc.hpp>
+
 #include "amcr/corrected_scan.h"
 #include "amcr/errors.h"
 #include "amcr/heading_proposal.h"
@@ -95,6 +97,10 @@ void ParticleFilter::reset()
   m_scratch_ = MParticleSet();
   leading_.clear();
   image_size_ = cv::Size();
+  held_mask_.release();
+  held_v_.clear();
+  held_prototypes_.clear();
+  held_count_ = 0;
 }
 
 // ---------------------------------------------------------------------------
@@ -102,6 +108,8 @@ void ParticleFilter::reset()
 
 void ParticleFilter::seed(const RadialScanner& scanner)
 {
+  if (scanner.image().size() != image_size_)
+    setHeldObjects({});  // outlines of another image size
   image_size_ = scanner.image().size();
   const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
   v_.assign(params_.num_v_particles, VParticle());
@@ -124,8 +132,8 @@ void ParticleFilter::seedV(VParticle& v, const RadialScanner& scanner)
   int best_enclosure = -1;
   for (int attempt = 0; attempt < params_.seed_attempts; ++attempt)
   {
-    const float x = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.width - 2.0)));
-    const float y = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.height - 2.0)));
+    const cv::Point2f place = drawFreePlace();
+    const float x = place.x, y = place.y;
     const float theta = static_cast<float>(rng_.uniform(-M_PI, M_PI));
     // Rays that meet an edge, but not at once: texture is not a region.
     RayHit hits[kFeatureRays];
@@ -147,10 +155,98 @@ void ParticleFilter::seedV(VParticle& v, const RadialScanner& scanner)
   }
 }
 
+namespace
+{
+constexpr int kFreePlaceDraws = 32;  // uniform draws before a free place is picked from the mask's free pixels
+}  // namespace
+
+// Inhibition of return (issue 15): what a held object shows is explained,
+// so no V-particle starts there.
+cv::Point2f ParticleFilter::drawFreePlace()
+{
+  const auto draw = [this] {
+    // x before y, in two statements: the order of a call's arguments is unspecified.
+    const float x = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.width - 2.0)));
+    const float y = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.height - 2.0)));
+    return cv::Point2f(x, y);
+  };
+  cv::Point2f place = draw();
+  if (held_count_ == 0)
+    return place;
+  for (int k = 1; k < kFreePlaceDraws && heldObjectAt(place.x, place.y) >= 0; ++k)
+    place = draw();
+  if (heldObjectAt(place.x, place.y) < 0)
+    return place;
+  // Held objects cover most of the image: a free pixel, if there is one.
+  std::vector<cv::Point> free;
+  cv::findNonZero(held_mask_ == 0, free);
+  if (free.empty())
+    return place;
+  const cv::Point& at = free[rng_.index(free.size())];
+  return cv::Point2f(static_cast<float>(at.x), static_cast<float>(at.y));
+}
+
+void ParticleFilter::setHeldObjects(const std::vector<HeldObject>& held)
+{
+  for (std::size_t k = 0; k < held.size(); ++k)
+    if (held[k].prototype < 0 || held[k].prototype >= static_cast<int>(memory_->size()))
+      throw InputError("setHeldObjects: held object " + std::to_string(k) + " names prototype " +
+                       std::to_string(held[k].prototype) + ", not in the memory of " +
+                       std::to_string(memory_->size()) + " prototypes");
+  held_count_ = 0;
+  held_mask_.release();
+  held_v_.clear();
+  held_prototypes_.clear();
+  if (held.empty() || image_size_.empty())
+    return;
+  held_mask_ = cv::Mat::zeros(image_size_, CV_16UC1);
+  for (const HeldObject& object : held)
+  {
+    ++held_count_;
+    held_v_.push_back(object.v_particles);
+    if (prior_.probability(object.prototype) > 0.0)  // a prior of 0 keeps a prototype out
+      held_prototypes_.push_back(object.prototype);
+    if (object.outline.size() < 3)
+      continue;
+    // The hull: a V-particle in a concavity of the object sees the object.
+    std::vector<cv::Point> points, hull;
+    for (const cv::Point2d& p : object.outline)
+      points.emplace_back(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
+    cv::convexHull(points, hull);
+    cv::fillConvexPoly(held_mask_, hull, cv::Scalar(held_count_));
+  }
+}
+
+int ParticleFilter::heldObjectAt(float x, float y) const
+{
+  const int col = static_cast<int>(std::lround(x)), row = static_cast<int>(std::lround(y));
+  if (held_count_ == 0 || col < 0 || row < 0 || col >= held_mask_.cols || row >= held_mask_.rows)
+    return -1;
+  return static_cast<int>(held_mask_.at<std::uint16_t>(row, col)) - 1;
+}
+
 void ParticleFilter::seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const VParticle& v)
 {
   for (std::size_t j = 0; j < end - begin; ++j)
-    seedM(set, begin + j, prior_.slots()[j], v);
+    seedM(set, begin + j, scenePrototype(prior_.slots()[j]), v);
+}
+
+// The scene's context (issue 15): what is held is likely to be in view
+// again, as a copy, so the prior of new M-particles leans towards it.
+int ParticleFilter::scenePrototype(int slot)
+{
+  if (held_prototypes_.empty() || params_.scene_prior_share <= 0.0 || rng_.uniform() >= params_.scene_prior_share)
+    return slot;
+  return held_prototypes_[rng_.index(held_prototypes_.size())];
+}
+
+double ParticleFilter::seedingProbability(int p) const
+{
+  if (held_prototypes_.empty() || params_.scene_prior_share <= 0.0)
+    return prior_.probability(p);
+  const double held = static_cast<double>(std::count(held_prototypes_.begin(), held_prototypes_.end(), p));
+  return (1.0 - params_.scene_prior_share) * prior_.probability(p) +
+         params_.scene_prior_share * held / static_cast<double>(held_prototypes_.size());
 }
 
 // Mixture proposal (Thrun, Fox, Burgard & Dellaert's Mixture-MCL; Lenser &
@@ -206,7 +302,7 @@ void ParticleFilter::clearMeasurement(MParticleSet& set, std::size_t index) cons
 float ParticleFilter::logProposalWeight(const MParticleSet& set, std::size_t index, double share) const
 {
   const int p = set.prototype[index];
-  const double uniform = prior_.probability(p) / std::max<std::size_t>(1, (*memory_)[p].interior().size());
+  const double uniform = seedingProbability(p) / std::max<std::size_t>(1, (*memory_)[p].interior().size());
   const double spread = candidateSpread(params_.index_stride);
   const double norm = 1.0 / (2.0 * M_PI * spread * spread * candidates_.size());
   double kernel = 0.0;

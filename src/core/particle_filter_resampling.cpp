@@ -15,10 +15,9 @@ namespace amcr
 namespace
 {
 constexpr int kMaxCopiesPerV = 3;  // copies one V-particle may get at a V-resampling
-// V-particles a recognized object keeps at full V-weight, whatever
-// params.num_v_particles: beyond it, the object's V-particles share this
-// much weight.
-constexpr int kVParticlesPerObject = 12;
+// Share of the V-particles a reported object that is not held yet keeps at
+// full V-weight: beyond it, the object's V-particles share that much weight.
+constexpr double kObjectAttentionShare = 0.2;
 }  // namespace
 
 // SIR over all prototypes of R^-1(v) (paper 3.6), with a share re-seeded
@@ -77,7 +76,7 @@ void ParticleFilter::resampleM(int v_index)
   for (int j = 0; j < n_inject; ++j, ++k)
     injectM(v, leading_[j % leading_.size()], begin + k, worst);
   for (int j = 0; j < n_reseed; ++j, ++k)
-    seedM(m_scratch_, begin + k, prior_.draw(rng_), v);
+    seedM(m_scratch_, begin + k, scenePrototype(prior_.draw(rng_)), v);
   m_.copyRange(m_scratch_, begin, begin + next);
   m_count_[v_index] = next;
 }
@@ -154,10 +153,10 @@ void ParticleFilter::injectM(const VParticle& v, const LeadingHypothesis& h, std
 }
 
 // Each V-particle's log V-weight: its mean log evidence since the last
-// V-resampling. Attention is shared between objects: the V-particles of an
-// object beyond kVParticlesPerObject share its weight, so that a recognized
-// object does not draw every V-particle away from the others and from the
-// unexplored rest of the image.
+// V-resampling. Attention is shared between objects: the V-particles of a
+// reported object beyond a share of them (kObjectAttentionShare) share its
+// weight, so that an object does not draw every V-particle away from the
+// others and from the unexplored rest of the image.
 std::vector<double> ParticleFilter::attentionWeights(const std::vector<std::vector<int>>& object_v_particles) const
 {
   const int n = static_cast<int>(v_.size());
@@ -165,9 +164,10 @@ std::vector<double> ParticleFilter::attentionWeights(const std::vector<std::vect
   for (int i = 0; i < n; ++i)
     log_weights[i] = v_[i].evidence_count > 0 ? v_[i].log_evidence_sum / v_[i].evidence_count
                                               : -std::numeric_limits<double>::infinity();
+  const double per_object = std::max(1.0, kObjectAttentionShare * n);
   for (const std::vector<int>& members : object_v_particles)
   {
-    const double crowding = static_cast<double>(members.size()) / kVParticlesPerObject;
+    const double crowding = static_cast<double>(members.size()) / per_object;
     if (crowding > 1.0)
       for (int i : members)
         log_weights[i] -= std::log(crowding);
@@ -175,25 +175,71 @@ std::vector<double> ParticleFilter::attentionWeights(const std::vector<std::vect
   return log_weights;
 }
 
+std::vector<int> ParticleFilter::keepOnHeldObjects(std::vector<double>& log_weights) const
+{
+  std::vector<int> kept;
+  if (held_count_ == 0)
+    return kept;
+  // Each V-particle on at most one held object: the one it supports, else
+  // the one whose hull holds it.
+  std::vector<int> on(v_.size(), -1);
+  for (int h = 0; h < held_count_; ++h)
+    for (int i : held_v_[h])
+      if (i >= 0 && i < static_cast<int>(v_.size()))
+        on[i] = h;
+  std::vector<std::vector<int>> inside(held_count_);
+  for (std::size_t i = 0; i < v_.size(); ++i)
+  {
+    const int h = on[i] >= 0 ? on[i] : heldObjectAt(v_[i].x, v_[i].y);
+    if (h >= 0)
+      inside[h].push_back(static_cast<int>(i));
+  }
+  // Together the held objects keep at most half of the V-particles.
+  const std::size_t keep = static_cast<std::size_t>(
+      std::min(params_.held_v_particles, std::max(1, static_cast<int>(v_.size()) / (2 * held_count_))));
+  for (std::vector<int>& members : inside)
+  {
+    std::stable_sort(members.begin(), members.end(), [&](int a, int b) { return log_weights[a] > log_weights[b]; });
+    for (std::size_t k = 0; k < members.size() && k < keep; ++k)
+      kept.push_back(members[k]);
+    for (int i : members)
+      log_weights[i] = -std::numeric_limits<double>::infinity();
+  }
+  std::sort(kept.begin(), kept.end());
+  return kept;
+}
+
 std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
                                            const std::vector<std::vector<int>>& object_v_particles)
 {
   const int n = static_cast<int>(v_.size());
   const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
-  const std::vector<double> log_weights = attentionWeights(object_v_particles);
-  const int n_reseed = std::min(n, static_cast<int>(std::lround(params_.v_reseed_fraction * n)));
-  const int n_draw = n - n_reseed;
+  std::vector<double> log_weights = attentionWeights(object_v_particles);
+  // A held object keeps a few V-particles; the rest, and the draws, go
+  // where nothing is explained yet (issue 15).
+  const std::vector<int> kept = keepOnHeldObjects(log_weights);
+  const int n_free = n - static_cast<int>(kept.size());
+  const bool any_weight = std::any_of(log_weights.begin(), log_weights.end(), [](double w) { return std::isfinite(w); });
+  const int n_reseed = any_weight ? std::min(n_free, static_cast<int>(std::lround(params_.v_reseed_fraction * n_free)))
+                                  : n_free;
+  const int n_draw = n_free - n_reseed;
   const std::vector<int> picks = systematicResampleLog(log_weights, n_draw, rng_);
 
-  // A V-particle gets at most kMaxCopiesPerV copies per resampling, so that
-  // attention cannot collapse onto one region in a few rounds; the slots
-  // left over are seeded afresh.
+  // The kept V-particles first, then the draws: a V-particle gets at most
+  // kMaxCopiesPerV copies per resampling, so that attention cannot collapse
+  // onto one region in a few rounds; the slots left over are seeded afresh.
   std::vector<int> source(n, -1);
   std::vector<int> copies(n, 0);
-  for (int k = 0; k < n_draw; ++k)
+  int slot = 0;
+  for (int i : kept)
+  {
+    source[slot++] = i;
+    ++copies[i];
+  }
+  for (int k = 0; k < n_draw; ++k, ++slot)
     if (copies[picks[k]] < kMaxCopiesPerV)
     {
-      source[k] = picks[k];
+      source[slot] = picks[k];
       ++copies[picks[k]];
     }
 

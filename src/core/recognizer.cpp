@@ -21,6 +21,18 @@ std::vector<FlowTrail> inherit(const std::vector<FlowTrail>& trails, const std::
     inherited.push_back(from >= 0 ? trails[from] : FlowTrail());
   return inherited;
 }
+
+/// The held objects, each with the V-particles that support it
+/// (`object_v_particles`, parallel to `objects`).
+std::vector<HeldObject> heldObjects(const std::vector<RecognizedObject>& objects,
+                                    const std::vector<std::vector<int>>& object_v_particles)
+{
+  std::vector<HeldObject> held;
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    if (objects[i].state == ObjectState::kHeld)
+      held.push_back({objects[i].prototype_id, objects[i].outline, object_v_particles[i]});
+  return held;
+}
 }  // namespace
 
 Recognizer::Recognizer(const Params& params, std::shared_ptr<const PrototypeMemory> memory)
@@ -98,10 +110,15 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   filter_.setLeading(std::move(extraction.feedback.leading));
   for (const VParticleCluster& c : extraction.clusters)
     result.converged_v_particles += isConverged(c, params_.cluster_min_share) ? 1 : 0;
+  // The life cycle (track_registry.h), then attention: what is held is
+  // explained, and V-resampling looks elsewhere.
+  result.objects = std::move(extraction.objects);
+  if (!params_.optical_flow)
+    tracker_.holdStill();
+  tracker_.assign(result.objects, scan_image.size(), result.lost);  // the tracks stay in working px, as the filter
+  filter_.setHeldObjects(heldObjects(result.objects, extraction.feedback.object_v_particles));
   if (round_done && iteration_ % params_.v_resample_interval == 0)
     trails_ = inherit(trails_, filter_.resampleV(scanner, extraction.feedback.object_v_particles));
-  result.objects = std::move(extraction.objects);
-  tracker_.assign(result.objects);  // the tracks stay in working px, as the filter
   if (!scale_.identity())
     scaleResult(result, scale_.toInput());
   if (budget_.limited())

@@ -52,15 +52,31 @@ double outlineOverlap(const std::vector<cv::Point2d>& a, const std::vector<cv::P
   return uni > 0 ? static_cast<double>(cv::countNonZero(ma & mb)) / uni : 0.0;
 }
 
+cv::Point2d outlineCentre(const std::vector<cv::Point2d>& outline)
+{
+  if (outline.empty())
+    return {0.0, 0.0};
+  const cv::Rect2d box = boundsOf(outline);
+  return {box.x + 0.5 * box.width, box.y + 0.5 * box.height};
+}
+
+LifecycleRule::LifecycleRule(const Params& params)
+  : confirm_frames(params.confirm_frames)
+  , lost_frames(params.lost_frames)
+  , max_objects(params.max_objects)
+  , hold_score(params.decision_threshold)
+{
+}
+
 int TrackRegistry::match(const RecognizedObject& object, const std::vector<bool>& taken) const
 {
   int best = -1;
-  double best_overlap = min_overlap_;
+  double best_overlap = rule_.min_overlap;
   for (std::size_t t = 0; t < tracks_.size(); ++t)
   {
-    if ((t < taken.size() && taken[t]) || tracks_[t].prototype_id != object.prototype_id)
+    if ((t < taken.size() && taken[t]) || tracks_[t].object.prototype_id != object.prototype_id)
       continue;
-    const double o = outlineOverlap(tracks_[t].outline, object.outline);
+    const double o = outlineOverlap(tracks_[t].object.outline, object.outline);
     if (o >= best_overlap)
     {
       best_overlap = o;
@@ -70,33 +86,83 @@ int TrackRegistry::match(const RecognizedObject& object, const std::vector<bool>
   return best;
 }
 
-bool TrackRegistry::continues(const RecognizedObject& object) const { return match(object, {}) >= 0; }
+const Track* TrackRegistry::continued(const RecognizedObject& object) const
+{
+  const int t = match(object, {});
+  return t >= 0 ? &tracks_[t] : nullptr;
+}
 
 void TrackRegistry::assign(std::vector<RecognizedObject>& objects)
+{
+  std::vector<RecognizedObject> ended;
+  assign(objects, cv::Size(), ended);
+}
+
+void TrackRegistry::assign(std::vector<RecognizedObject>& objects, const cv::Size& image,
+                           std::vector<RecognizedObject>& ended)
 {
   std::vector<Track> next;
   std::vector<bool> taken(tracks_.size(), false);
   for (auto& object : objects)
   {
     const int best = match(object, taken);
+    Track track;
     if (best >= 0)
     {
       taken[best] = true;
-      object.track_id = tracks_[best].id;
+      track = tracks_[best];
     }
     else
-      object.track_id = next_id_++;
-    next.push_back({object.track_id, object.prototype_id, object.prototype_to_image, object.outline});
+    {
+      track.object.track_id = next_id_++;
+    }
+    ++track.reports;
+    track.misses = 0;
+    // Tentative until reported confirm_frames times; then held while the
+    // tracker follows it (a new track was not followed: it is not held yet)
+    // and its fit is good enough to be reported without the hysteresis.
+    object.track_id = track.object.track_id;
+    const bool holds = track.followed && object.score >= rule_.hold_score;
+    object.state = track.reports < rule_.confirm_frames ? ObjectState::kTentative
+                   : holds                              ? ObjectState::kHeld
+                                                        : ObjectState::kConfirmed;
+    track.object = object;
+    track.followed = false;
+    next.push_back(std::move(track));
+  }
+  // The tracks no object continued coast, until they are lost.
+  const cv::Rect2d inside(0.0, 0.0, image.width, image.height);
+  for (std::size_t t = 0; t < tracks_.size(); ++t)
+  {
+    if (taken[t])
+      continue;
+    Track track = tracks_[t];
+    ++track.misses;
+    track.followed = false;
+    const bool left = !image.empty() && !inside.contains(outlineCentre(track.object.outline));
+    if (left || track.misses >= rule_.lost_frames)
+    {
+      track.object.state = ObjectState::kLost;
+      ended.push_back(std::move(track.object));
+    }
+    else
+    {
+      next.push_back(std::move(track));
+    }
   }
   tracks_ = std::move(next);
 }
 
 void TrackRegistry::move(std::size_t index, const Affine& motion)
 {
-  Track& t = tracks_.at(index);
-  t.prototype_to_image = composeAffine(t.prototype_to_image, motion);
-  for (auto& p : t.outline)
-    p = applyAffine(motion, p);
+  mapImageSide(tracks_.at(index).object, motion);
+  tracks_[index].followed = true;
+}
+
+void TrackRegistry::followAll()
+{
+  for (Track& t : tracks_)
+    t.followed = true;
 }
 
 void TrackRegistry::clear() { tracks_.clear(); }

@@ -57,22 +57,9 @@ cv::Mat toWorkingImage(const cv::Mat& grey, const WorkingScale& scale)
 
 void scaleResult(RecognitionResult& result, const Affine& working_to_input)
 {
-  Affine input_to_working = identityAffine();
-  invertAffine(working_to_input, input_to_working);
-  const Homography lifted = liftAffine(working_to_input);
   for (RecognizedObject& o : result.objects)
-  {
-    for (cv::Point2d& p : o.outline)
-      p = applyAffine(working_to_input, p);
-    for (Correspondence& c : o.correspondences)
-      c.image = applyAffine(working_to_input, c.image);
-    o.prototype_to_image = composeAffine(o.prototype_to_image, working_to_input);
-    o.image_to_prototype = composeAffine(input_to_working, o.image_to_prototype);
-    // A fitted homography is composed (the map's last row is 0 0 1: h22 stays
-    // 1); otherwise it is the affine's lift, as RecognizedObject promises.
-    o.homography = o.homography_valid ? composeHomography(o.homography, lifted) : liftAffine(o.prototype_to_image);
-    o.anisotropy = affineAnisotropy(o.prototype_to_image);
-    o.viewing_angle_deg = viewingAngleDegrees(o.anisotropy);
-  }
+    mapImageSide(o, working_to_input);
+  for (RecognizedObject& o : result.lost)
+    mapImageSide(o, working_to_input);
 }
 }  // namespace amcr

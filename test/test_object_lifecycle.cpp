@@ -1,0 +1,160 @@
+// The objects' life cycle (track_registry.h, issue 15), on objects made in
+// code: tentative -> confirmed -> held -> lost, coasting between, the image
+// border, the bound on objects, and the message's string names.
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "amcr/track_registry.h"
+#include "scene_drawing.h"
+
+namespace
+{
+using amcr::ObjectState;
+
+const cv::Size kImage(640, 480);
+
+amcr::RecognizedObject starAt(double x, double y, double score = 0.9)
+{
+  const amcr::Affine pose = amcr_test::makeAffine(amcr_test::prototypeCentre(), {x, y}, 0.0, 0.5, 0.5, 0.0);
+  amcr::RecognizedObject o;
+  o.prototype_id = 0;
+  o.score = score;
+  o.prototype_to_image = pose;
+  o.outline = amcr_test::transformPoints(pose, amcr_test::shapePolygon(amcr_test::ShapeId::kStar));
+  return o;
+}
+
+amcr::LifecycleRule rule()
+{
+  amcr::LifecycleRule r;
+  r.confirm_frames = 3;
+  r.lost_frames = 2;
+  r.max_objects = 3;
+  r.hold_score = 0.75;
+  return r;
+}
+
+/// One frame: the tracker follows every track (a static scene), then the
+/// objects are assigned; returns the tracks that ended.
+std::vector<amcr::RecognizedObject> frame(amcr::TrackRegistry& registry, std::vector<amcr::RecognizedObject>& objects)
+{
+  registry.followAll();
+  std::vector<amcr::RecognizedObject> ended;
+  registry.assign(objects, kImage, ended);
+  return ended;
+}
+}  // namespace
+
+// Reported in confirm_frames frames: confirmed, held while followed and its
+// score reaches hold_score; unreported, it coasts with its id and is lost
+// after lost_frames frames, listed once.
+TEST(ObjectLifecycle, TentativeConfirmedHeldLost)
+{
+  amcr::TrackRegistry registry(rule());
+  std::vector<ObjectState> states;
+  int id = 0;
+  for (int k = 0; k < 4; ++k)
+  {
+    std::vector<amcr::RecognizedObject> objects = {starAt(200 + k, 200)};
+    EXPECT_TRUE(frame(registry, objects).empty());
+    states.push_back(objects[0].state);
+    id = objects[0].track_id;
+  }
+  EXPECT_EQ(states, (std::vector<ObjectState>{ObjectState::kTentative, ObjectState::kTentative,
+                                              ObjectState::kHeld, ObjectState::kHeld}));
+  EXPECT_EQ(id, 1);
+
+  // Kept by the hysteresis only (below hold_score): confirmed, not held.
+  std::vector<amcr::RecognizedObject> weak = {starAt(204, 200, 0.6)};
+  frame(registry, weak);
+  EXPECT_EQ(weak[0].state, ObjectState::kConfirmed);
+  EXPECT_EQ(weak[0].track_id, id);
+
+  // Not reported for one frame: it coasts, and keeps its id when found.
+  std::vector<amcr::RecognizedObject> none;
+  EXPECT_TRUE(frame(registry, none).empty());
+  ASSERT_EQ(registry.tracks().size(), 1u);
+  EXPECT_EQ(registry.tracks()[0].misses, 1);
+  std::vector<amcr::RecognizedObject> again = {starAt(205, 200)};
+  frame(registry, again);
+  EXPECT_EQ(again[0].track_id, id);
+  EXPECT_EQ(again[0].state, ObjectState::kHeld);
+
+  // Not reported for lost_frames frames: lost, once, as last reported.
+  EXPECT_TRUE(frame(registry, none).empty());
+  const std::vector<amcr::RecognizedObject> ended = frame(registry, none);
+  ASSERT_EQ(ended.size(), 1u);
+  EXPECT_EQ(ended[0].track_id, id);
+  EXPECT_EQ(ended[0].state, ObjectState::kLost);
+  EXPECT_NEAR(ended[0].prototype_to_image(0, 2), again[0].prototype_to_image(0, 2), 1e-9);
+  EXPECT_TRUE(registry.tracks().empty());
+  EXPECT_TRUE(frame(registry, none).empty());
+
+  // The same place later is a new object with a new id.
+  std::vector<amcr::RecognizedObject> later = {starAt(205, 200)};
+  frame(registry, later);
+  EXPECT_EQ(later[0].track_id, id + 1);
+  EXPECT_EQ(later[0].state, ObjectState::kTentative);
+}
+
+// A confirmed object the tracker did not follow into the frame is
+// confirmed, not held.
+TEST(ObjectLifecycle, HeldOnlyWhenFollowed)
+{
+  amcr::TrackRegistry registry(rule());
+  std::vector<amcr::RecognizedObject> ended;
+  for (int k = 0; k < 3; ++k)
+  {
+    std::vector<amcr::RecognizedObject> objects = {starAt(200, 200)};
+    registry.assign(objects, kImage, ended);  // nothing follows it
+    EXPECT_EQ(objects[0].state, k < 2 ? ObjectState::kTentative : ObjectState::kConfirmed) << "frame " << k;
+  }
+  registry.move(0, amcr::Affine(1, 0, 3, 0, 1, 0));  // the flow moved it
+  std::vector<amcr::RecognizedObject> moved = {starAt(203, 200)};
+  registry.assign(moved, kImage, ended);
+  EXPECT_EQ(moved[0].state, ObjectState::kHeld);
+  EXPECT_TRUE(ended.empty());
+}
+
+// A coasting track whose centre the flow moved out of the image is lost at
+// once; a track moved by the flow carries its whole pose along.
+TEST(ObjectLifecycle, LeavingTheImageEndsTheTrack)
+{
+  amcr::TrackRegistry registry(rule());
+  std::vector<amcr::RecognizedObject> objects = {starAt(600, 200), starAt(200, 200)};
+  frame(registry, objects);
+  registry.move(0, amcr::Affine(1, 0, 60, 0, 1, 0));
+  EXPECT_NEAR(registry.tracks()[0].object.prototype_to_image(0, 2), objects[0].prototype_to_image(0, 2) + 60, 1e-9);
+  EXPECT_NEAR(registry.tracks()[0].object.image_to_prototype(0, 2),
+              objects[0].image_to_prototype(0, 2) - 60 * objects[0].image_to_prototype(0, 0), 1e-9);
+  std::vector<amcr::RecognizedObject> only_left = {starAt(200, 200)};
+  std::vector<amcr::RecognizedObject> ended;
+  registry.assign(only_left, kImage, ended);
+  ASSERT_EQ(ended.size(), 1u);
+  EXPECT_EQ(ended[0].track_id, objects[0].track_id);
+  EXPECT_EQ(only_left[0].track_id, objects[1].track_id);
+}
+
+// max_objects bounds the tracks, coasting ones included.
+TEST(ObjectLifecycle, RoomForMaxObjects)
+{
+  amcr::TrackRegistry registry(rule());
+  EXPECT_TRUE(registry.hasRoom());
+  std::vector<amcr::RecognizedObject> objects = {starAt(100, 100), starAt(300, 100)};
+  frame(registry, objects);
+  EXPECT_TRUE(registry.hasRoom());
+  EXPECT_FALSE(registry.hasRoom(1));
+  std::vector<amcr::RecognizedObject> one = {starAt(100, 100), starAt(500, 300)};
+  frame(registry, one);  // the second track coasts: three tracks
+  EXPECT_EQ(registry.tracks().size(), 3u);
+  EXPECT_FALSE(registry.hasRoom());
+}
+
+TEST(ObjectLifecycle, StateNames)
+{
+  EXPECT_EQ(amcr::toString(ObjectState::kTentative), "tentative");
+  EXPECT_EQ(amcr::toString(ObjectState::kConfirmed), "confirmed");
+  EXPECT_EQ(amcr::toString(ObjectState::kHeld), "held");
+  EXPECT_EQ(amcr::toString(ObjectState::kLost), "lost");
+}
