@@ -28,7 +28,7 @@ public:
       d.score = o.score;
       d.prototype_to_image = o.prototype_to_image;
       d.track_id = o.track_id;
-      // The track's state (tentative/confirmed/held) goes here once RecognizedObject carries it.
+      d.state = amcr::toString(o.state);
       for (const amcr::Correspondence& c : o.correspondences)
         d.correspondences.push_back({c.image, c.prototype});
       found.push_back(std::move(d));

@@ -9,8 +9,9 @@
 //
 // Writes <out>/<sequence>.<method>.jsonl, one line per frame run:
 //   {"frame": k, "time_ms": t, "objects": [{"label": ..., "score": s,
-//    "prototype_to_image": [a,b,c,d,e,f], "track_id": n, "correspondences": [[xi,yi,xp,yp], ...]}]}
-// ("track_id": the recognizer's track of the object, amcr only; the baselines keep no tracks and omit it)
+//    "prototype_to_image": [a,b,c,d,e,f], "track_id": n, "state": s, "correspondences": [[xi,yi,xp,yp], ...]}]}
+// ("track_id" and "state": the recognizer's track of the object and where it is in its life cycle,
+// "tentative" | "confirmed" | "held"; amcr only, the baselines keep no tracks and omit both)
 // and <out>/init.<method>.json (set-up time; for amcr the lookup tables' size). A file that
 // exists is not computed again (files are written under a temporary name, then renamed), so
 // an interrupted run resumes. Frames are processed on one core (OpenCV threads off). GHT is slow: it runs on --ght-frames (0-based; -1 = the last)
@@ -143,9 +144,7 @@ std::string jsonLine(int frame, double time_ms, const std::vector<Detection>& fo
       s << (k ? ", " : "") << number(d.prototype_to_image(k / 3, k % 3));
     s << "]";
     if (d.track_id >= 0)
-      s << ", \"track_id\": " << d.track_id;
-    // The track's state ("state": "tentative" | "confirmed" | "held") is to be written here, beside
-    // the track id, once Detection carries it.
+      s << ", \"track_id\": " << d.track_id << ", \"state\": \"" << d.state << "\"";
     s << ", \"correspondences\": [";
     for (std::size_t c = 0; c < d.correspondences.size(); ++c)
     {

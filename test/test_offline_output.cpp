@@ -107,6 +107,7 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   object.label = "bird \"1\"";
   object.prototype_id = 2;
   object.track_id = 4;
+  object.state = amcr::ObjectState::kHeld;
   object.score = 0.93;
   object.support = 17;
   object.image_to_prototype = amcr::Affine(0.5, 0, -10, 0, 0.5, std::nan(""));
@@ -125,13 +126,13 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   EXPECT_EQ(line,
             "{\"frame\": 3, \"time_ms\": 3.142, \"iteration\": 7, \"iterations\": 0.500, \"mean_m_particles\": 412.3, "
             "\"objects\": [{\"label\": \"bird \\\"1\\\"\", "
-            "\"track_id\": 4, \"score\": 0.9300, \"support\": 17, "
+            "\"track_id\": 4, \"state\": \"held\", \"score\": 0.9300, \"support\": 17, "
             "\"image_to_prototype\": [[0.500000, 0.000000, -10.000000], [0.000000, 0.500000, null]], "
             "\"prototype_to_image\": [[2.000000, 0.000000, 20.000000], [0.000000, 2.000000, 0.000000]], "
             "\"homography\": [[2.0000000000, 0.1000000000, 20.0000000000], [0.0000000000, 2.0000000000, -3.0000000000], "
             "[0.0001234568, -0.0000012000, 1.0000000000]], \"homography_valid\": true, "
             "\"anisotropy\": 2.0000, \"viewing_angle_deg\": 60.00, "
-            "\"correspondences\": [[10.13, 20.50, 1.00, 2.00], [30.00, 40.00, 5.55, -6.00]]}]}");
+            "\"correspondences\": [[10.13, 20.50, 1.00, 2.00], [30.00, 40.00, 5.55, -6.00]]}], \"lost\": []}");
   Json value;
   std::string error;
   ASSERT_TRUE(JsonParser::parse(line, value, error)) << error;
@@ -145,6 +146,18 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   const Json* h = objects->array[0].get("homography");
   ASSERT_TRUE(h && h->isArray() && h->array.size() == 3u);
   EXPECT_NEAR(h->array[2].array[0].number, 0.000123456789, 1e-10);
+
+  // A track that ended is listed under "lost" with its state.
+  object.state = amcr::ObjectState::kLost;
+  result.lost.push_back(object);
+  result.objects.clear();
+  Json with_lost;
+  ASSERT_TRUE(JsonParser::parse(frameJson(4, result), with_lost, error)) << error;
+  const Json* lost = with_lost.get("lost");
+  ASSERT_TRUE(lost && lost->isArray());
+  ASSERT_EQ(lost->array.size(), 1u);
+  EXPECT_EQ(lost->array[0].get("state")->string, "lost");
+  EXPECT_EQ(lost->array[0].get("track_id")->number, 4);
 }
 
 TEST(JsonOutput, EmptyAndSkippedFrames)
@@ -155,11 +168,11 @@ TEST(JsonOutput, EmptyAndSkippedFrames)
   empty.time_ms = 0.5;
   EXPECT_EQ(frameJson(0, empty),
             "{\"frame\": 0, \"time_ms\": 0.500, \"iteration\": 1, \"iterations\": 1.000, \"mean_m_particles\": 0.0, "
-            "\"objects\": []}");
+            "\"objects\": [], \"lost\": []}");
   const std::string skipped = skippedFrameJson(5, 4, "cannot read image 'a\\b.png'");
   EXPECT_EQ(skipped,
             "{\"frame\": 5, \"time_ms\": 0.000, \"iteration\": 4, \"iterations\": 0, \"objects\": [], "
-            "\"skipped\": \"cannot read image 'a\\\\b.png'\"}");
+            "\"lost\": [], \"skipped\": \"cannot read image 'a\\\\b.png'\"}");
   Json value;
   std::string error;
   EXPECT_TRUE(JsonParser::parse(skipped, value, error)) << error;

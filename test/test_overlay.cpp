@@ -160,7 +160,7 @@ TEST(DrawOverlay, LabelShowsTheViewingAngleAndAnisotropy)
   object.viewing_angle_deg = 60.0;
   std::vector<std::string> lines = amcr::objectLabel(object);
   ASSERT_EQ(lines.size(), 2u);
-  EXPECT_EQ(lines[0], "target #2 0.87 (9)");
+  EXPECT_EQ(lines[0], "target #2 0.87 (9) tentative");
   EXPECT_EQ(lines[1], "view 60deg 2.00:1");
   object.homography_valid = true;
   object.anisotropy = 3.0;

@@ -25,6 +25,8 @@ struct Detection
   /// The method's track of this object, stable from frame to frame; -1: the method keeps no tracks
   /// (the baselines), and the JSONL line omits it.
   int track_id = -1;
+  /// Where the track is in its life cycle ("tentative", "confirmed", "held"); with a track only.
+  std::string state;
   /// Pairs (image point, prototype point), when the method has them.
   std::vector<std::pair<cv::Point2d, cv::Point2d>> correspondences;
 };

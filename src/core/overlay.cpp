@@ -145,7 +145,7 @@ std::vector<std::string> objectLabel(const RecognizedObject& object)
   if (object.homography_valid)
     view += " persp";
   return {object.label + " #" + std::to_string(object.track_id) + " " + format("%.2f", object.score) + " (" +
-              std::to_string(object.support) + ")",
+              std::to_string(object.support) + ") " + toString(object.state),
           view};
 }
 

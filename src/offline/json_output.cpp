@@ -87,6 +87,7 @@ void appendObject(std::string& out, const RecognizedObject& object)
 {
   out += "{\"label\": " + jsonString(object.label);
   out += ", \"track_id\": " + std::to_string(object.track_id);
+  out += ", \"state\": " + jsonString(toString(object.state));
   out += ", \"score\": " + jsonNumber(object.score, kScoreDecimals);
   out += ", \"support\": " + std::to_string(object.support);
   out += ", \"image_to_prototype\": ";
@@ -202,6 +203,13 @@ std::string frameJson(long frame, const RecognitionResult& result)
       out += ", ";
     appendObject(out, result.objects[i]);
   }
+  out += "], \"lost\": [";
+  for (std::size_t i = 0; i < result.lost.size(); ++i)
+  {
+    if (i > 0)
+      out += ", ";
+    appendObject(out, result.lost[i]);
+  }
   out += "]}";
   return out;
 }
@@ -209,7 +217,7 @@ std::string frameJson(long frame, const RecognitionResult& result)
 std::string skippedFrameJson(long frame, long iteration, const std::string& reason)
 {
   return "{\"frame\": " + std::to_string(frame) + ", \"time_ms\": " + jsonNumber(0.0, kTimeDecimals) +
-         ", \"iteration\": " + std::to_string(iteration) + ", \"iterations\": 0, \"objects\": [], \"skipped\": " + jsonString(reason) +
+         ", \"iteration\": " + std::to_string(iteration) + ", \"iterations\": 0, \"objects\": [], \"lost\": [], \"skipped\": " + jsonString(reason) +
          "}";
 }
 

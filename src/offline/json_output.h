@@ -1,11 +1,11 @@
 // amcr_offline's output: one JSON object per input frame, one per line,
 // written by hand (no JSON library in the dependencies):
 //   {"frame": 0, "time_ms": 3.100, "iteration": 1, "objects": [{"label": "bird-1",
-//    "track_id": 1, "score": 0.9300, "support": 17,
+//    "track_id": 1, "state": "held", "score": 0.9300, "support": 17,
 //    "image_to_prototype": [[a, b, c], [d, e, f]], "prototype_to_image": [[a, b, c], [d, e, f]],
 //    "homography": [[a, b, c], [d, e, f], [g, h, 1]], "homography_valid": false,
 //    "anisotropy": 1.0000, "viewing_angle_deg": 0.00,
-//    "correspondences": [[xi, yi, xp, yp], ...]}]}
+//    "correspondences": [[xi, yi, xp, yp], ...]}], "lost": [...]}
 // Other tools read these names: keep them.
 #pragma once
 

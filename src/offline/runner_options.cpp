@@ -170,13 +170,18 @@ Options:
 
 Output, one line per input frame (numbers in px, time in ms):
   {"frame": 0, "time_ms": 3.100, "iteration": 1, "objects": [{"label": "bird-1",
-   "track_id": 1, "score": 0.9300, "support": 17,
+   "track_id": 1, "state": "held", "score": 0.9300, "support": 17,
    "image_to_prototype": [[a, b, c], [d, e, f]],
    "prototype_to_image": [[a, b, c], [d, e, f]],
-   "correspondences": [[x_image, y_image, x_prototype, y_prototype], ...]}]}
+   "correspondences": [[x_image, y_image, x_prototype, y_prototype], ...]}],
+   "lost": [...]}
   Each line also holds "iterations" (the share of an iteration the frame
   ran) and "mean_m_particles" (M-particles per V-particle, which
-  KLD-sampling adapts). "objects" is empty when nothing is recognized. Prototype coordinates are
+  KLD-sampling adapts). "state" is where the object is in its life cycle:
+  "tentative" (reported in fewer than confirm_frames frames), "confirmed",
+  "held" (confirmed and followed by the tracker). "lost" lists the objects
+  whose tracks ended at this frame (as last reported, "state": "lost").
+  "objects" is empty when nothing is recognized. Prototype coordinates are
   pixels of the original prototype file (OpenCV pixel-centre convention).
   Numbers that are not finite are written as null.
 

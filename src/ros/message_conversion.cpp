@@ -18,6 +18,21 @@ void toArray(const amcr::Homography& h, boost::array<double, 9>& out)
     for (int c = 0; c < 3; ++c)
       out[static_cast<std::size_t>(r * 3 + c)] = h(r, c);
 }
+std::uint8_t toMsg(amcr::ObjectState state)
+{
+  switch (state)
+  {
+    case amcr::ObjectState::kTentative:
+      return amcr::Recognition::TENTATIVE;
+    case amcr::ObjectState::kConfirmed:
+      return amcr::Recognition::CONFIRMED;
+    case amcr::ObjectState::kHeld:
+      return amcr::Recognition::HELD;
+    case amcr::ObjectState::kLost:
+      return amcr::Recognition::LOST;
+  }
+  return amcr::Recognition::TENTATIVE;
+}
 }  // namespace
 
 amcr::Recognition toMsg(const amcr::RecognizedObject& object)
@@ -26,6 +41,7 @@ amcr::Recognition toMsg(const amcr::RecognizedObject& object)
   msg.label = object.label;
   msg.prototype_id = object.prototype_id;
   msg.track_id = object.track_id;
+  msg.state = toMsg(object.state);
   msg.score = object.score;
   msg.support = object.support;
   toArray(object.image_to_prototype, msg.image_to_prototype);
@@ -67,6 +83,8 @@ amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::
   msg.processing_ms = result.time_ms;
   for (const amcr::RecognizedObject& o : result.objects)  // the core's order: best score first
     msg.objects.push_back(toMsg(o));
+  for (const amcr::RecognizedObject& o : result.lost)
+    msg.lost.push_back(toMsg(o));
   return msg;
 }
 

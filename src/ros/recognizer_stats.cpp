@@ -7,6 +7,26 @@
 
 namespace amcr_ros
 {
+namespace
+{
+const char* stateName(std::uint8_t state)
+{
+  switch (state)
+  {
+    case amcr::Recognition::TENTATIVE:
+      return "tentative";
+    case amcr::Recognition::CONFIRMED:
+      return "confirmed";
+    case amcr::Recognition::HELD:
+      return "held";
+    case amcr::Recognition::LOST:
+      return "lost";
+    default:
+      return "unknown";
+  }
+}
+}  // namespace
+
 void RecognizerStats::received(std::uint32_t seq)
 {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -42,9 +62,9 @@ void RecognizerStats::processed(const amcr::Recognitions& out, const FilterState
   leading_.clear();
   for (const auto& o : out.objects)
   {
-    char text[160];
-    std::snprintf(text, sizeof(text), "%s%s #%d (score %.2f, support %d)", leading_.empty() ? "" : ", ",
-                  o.label.c_str(), o.track_id, o.score, o.support);
+    char text[192];
+    std::snprintf(text, sizeof(text), "%s%s #%d (%s, score %.2f, support %d)", leading_.empty() ? "" : ", ",
+                  o.label.c_str(), o.track_id, stateName(o.state), o.score, o.support);
     leading_ += text;
   }
 }

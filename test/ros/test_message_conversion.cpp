@@ -13,6 +13,7 @@ TEST(MessageConversion, ObjectFieldsWithHomographyAndView)
   object.label = "target";
   object.prototype_id = 1;
   object.track_id = 5;
+  object.state = amcr::ObjectState::kHeld;
   object.score = 0.91;
   object.support = 7;
   object.image_to_prototype = amcr::Affine(0.5, 0.1, -3, -0.1, 0.5, 4);
@@ -28,6 +29,7 @@ TEST(MessageConversion, ObjectFieldsWithHomographyAndView)
   EXPECT_EQ(msg.label, "target");
   EXPECT_EQ(msg.prototype_id, 1);
   EXPECT_EQ(msg.track_id, 5);
+  EXPECT_EQ(msg.state, amcr::Recognition::HELD);
   EXPECT_DOUBLE_EQ(msg.score, 0.91);
   EXPECT_EQ(msg.support, 7);
   for (int r = 0; r < 2; ++r)
@@ -57,5 +59,25 @@ TEST(MessageConversion, ObjectFieldsWithHomographyAndView)
   EXPECT_DOUBLE_EQ(plain.homography[6], 0.0);
   EXPECT_DOUBLE_EQ(plain.homography[7], 0.0);
   EXPECT_DOUBLE_EQ(plain.homography[8], 1.0);
+}
+// Every state has its constant; the objects whose tracks ended go to `lost`.
+TEST(MessageConversion, StatesAndLostObjects)
+{
+  amcr::RecognizedObject object;
+  object.state = amcr::ObjectState::kTentative;
+  EXPECT_EQ(amcr_ros::toMsg(object).state, amcr::Recognition::TENTATIVE);
+  object.state = amcr::ObjectState::kConfirmed;
+  EXPECT_EQ(amcr_ros::toMsg(object).state, amcr::Recognition::CONFIRMED);
+
+  amcr::RecognitionResult result;
+  result.objects.push_back(object);
+  object.track_id = 9;
+  object.state = amcr::ObjectState::kLost;
+  result.lost.push_back(object);
+  const amcr::Recognitions msg = amcr_ros::toMsg(result, std_msgs::Header());
+  ASSERT_EQ(msg.objects.size(), 1u);
+  ASSERT_EQ(msg.lost.size(), 1u);
+  EXPECT_EQ(msg.lost[0].track_id, 9);
+  EXPECT_EQ(msg.lost[0].state, amcr::Recognition::LOST);
 }
 }  // namespace
