@@ -34,6 +34,15 @@ MPEG7 = os.path.join(DATA, "mpeg7")
 HAVE_DATA = os.path.isfile(os.path.join(MPEG7, "apple-1.png")) and os.path.isdir(ms.PHOTO_DIR)
 
 
+def render_truth(folder, name, suite, index, spec, memory, classes, frames):
+    """Renders sequence `index` of `suite` (seed 1, `frames` frames) into folder/name; returns its truth."""
+    path = os.path.join(folder, name)
+    os.makedirs(path)
+    ms.render_sequence(path, suite, index, spec, memory, classes, MPEG7, frames, 1)
+    with open(os.path.join(path, "truth.json")) as f:
+        return json.load(f)
+
+
 class SeedIndex(unittest.TestCase):
     def test_earlier_suites_keep_their_seeds(self):
         # The index of a suite enters every draw of its sequences: a new suite must not move one.
@@ -70,11 +79,7 @@ class Suites(unittest.TestCase):
         self.assertEqual(sorted(targets), memories[3])
         with tempfile.TemporaryDirectory() as tmp:
             for index in range(3):
-                path = os.path.join(tmp, "seq_%03d" % index)
-                os.makedirs(path)
-                ms.render_sequence(path, "memory-growth", index, spec, targets, self.classes, MPEG7, 2, 1)
-                with open(os.path.join(path, "truth.json")) as f:
-                    truth = json.load(f)
+                truth = render_truth(tmp, "seq_%03d" % index, "memory-growth", index, spec, targets, self.classes, 2)
                 for frame in truth["frames"]:
                     for o in frame["objects"]:
                         for n in spec["memories"]:
@@ -85,12 +90,8 @@ class Suites(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             truths, frames = {}, {}
             for suite in ("paper", "paper-hd"):
-                path = os.path.join(tmp, suite)
-                os.makedirs(path)
-                ms.render_sequence(path, suite, 0, ms.SUITES[suite], memory, self.classes, MPEG7, 3, 1)
-                with open(os.path.join(path, "truth.json")) as f:
-                    truths[suite] = json.load(f)
-                frames[suite] = cv2.imread(os.path.join(path, "frames", "frame_0002.png"), cv2.IMREAD_GRAYSCALE)
+                truths[suite] = render_truth(tmp, suite, suite, 0, ms.SUITES[suite], memory, self.classes, 3)
+                frames[suite] = cv2.imread(os.path.join(tmp, suite, "frames", "frame_0002.png"), cv2.IMREAD_GRAYSCALE)
         low, high = truths["paper"], truths["paper-hd"]
         self.assertEqual(high["image_size"], [1280, 720])
         self.assertEqual(frames["paper-hd"].shape, (720, 1280))
@@ -114,10 +115,7 @@ class Suites(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             for index in range(2):
                 path = os.path.join(tmp, "seq_%03d" % index)
-                os.makedirs(path)
-                ms.render_sequence(path, "copies", index, spec, memory, self.classes, MPEG7, 12, 1)
-                with open(os.path.join(path, "truth.json")) as f:
-                    truth = json.load(f)
+                truth = render_truth(tmp, "seq_%03d" % index, "copies", index, spec, memory, self.classes, 12)
                 labels = {o["label"] for frame in truth["frames"] for o in frame["objects"]}
                 self.assertEqual(len(labels), 1)
                 mask = cv2.imread(memory[labels.pop()], cv2.IMREAD_GRAYSCALE)
