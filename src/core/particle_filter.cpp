@@ -369,8 +369,13 @@ bool ParticleFilter::drawShape(MParticleSet& set, std::size_t index)
   const bool oblique =
       params_.max_anisotropy > 1.0 && params_.oblique_share > 0.0 && rng_.uniform() < params_.oblique_share;
   if (oblique)
-    obliqueShape(static_cast<float>(std::exp(rng_.uniform(0.0, std::log(params_.max_anisotropy)))),
-                 static_cast<float>(rng_.uniform(0.0, M_PI)), shape);
+  {
+    // The axis first, then the anisotropy, in two statements: the order of a
+    // call's arguments is unspecified (this is the order GCC took).
+    const float axis = static_cast<float>(rng_.uniform(0.0, M_PI));
+    const float anisotropy = static_cast<float>(std::exp(rng_.uniform(0.0, std::log(params_.max_anisotropy))));
+    obliqueShape(anisotropy, axis, shape);
+  }
   for (int k = 0; k < 3; ++k)
     set.shape[k][index] = shape[k];
   return oblique;
