@@ -206,7 +206,9 @@ TEST(CorrectedScan, TrueAffineGivesCorrespondingPointsOverTheSweep)
     EXPECT_LT(percentile(corrected, 0.5), kMedianDeviation) << describe(view);
     EXPECT_LT(percentile(corrected, 0.9), kP90Deviation) << describe(view);
     if (view.anisotropy >= 2.0)
+    {
       EXPECT_GT(percentile(paper, 0.5), kPaperMedianAtTwo) << describe(view);
+    }
   }
 }
 
@@ -274,7 +276,9 @@ TEST(CorrectedScan, TruePoseBeatsPosesTenPixelsOrTenDegreesOff)
     EXPECT_GE(shifted_beaten, kBeatenShare * compared) << describe(view);
     EXPECT_GE(turned_beaten, kBeatenShare * compared) << describe(view);
     if (view.anisotropy >= 2.0)
+    {
       EXPECT_GT(true_sum, paper_sum + kPaperLossAtTwo * compared) << describe(view);
+    }
   }
 }
 
