@@ -217,8 +217,7 @@ private:
   std::vector<int> m_count_;                   // M-particles each V-particle holds
   std::vector<std::uint64_t> kld_bins_;
   cv::Mat held_mask_;  // CV_16UC1 of image_size_: 0 free, k + 1 inside held object k's hull; empty: none held
-  std::vector<std::vector<int>> held_v_;  // each held object's supporting V-particles
-  std::vector<int> held_prototypes_;      // each held object's prototype
-  int held_count_ = 0;
+  std::vector<std::vector<int>> held_v_;  // each held object's supporting V-particles (one entry per held object)
+  std::vector<int> held_prototypes_;      // the held objects' prototypes whose prior is not 0
 };
 }  // namespace amcr

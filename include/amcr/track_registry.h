@@ -3,15 +3,15 @@
 // confirmed once reported in params.confirm_frames frames, held while it is
 // confirmed, the tracker follows it and its score is at least the decision
 // threshold (its V-particles may then look elsewhere; one that is reported
-// only by the tracking hysteresis gets them back), and lost when its outline has been gone for params.lost_frames
-// frames in a row or its centre left the image. Between, a track that is
+// only by the tracking hysteresis gets them back), and lost when its outline
+// has been gone for params.lost_frames frames in a row or its centre left
+// the image. Between, a track that is
 // not reported coasts: the optical flow moves it and the next fit starts
 // from it, and it keeps its id when it is found again. An object continues
 // the track of its prototype whose outline (moved by the flow) overlaps it
 // most. Ids are never reused within the registry's life.
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -61,8 +61,6 @@ public:
 
   /// The track `object` would continue, or null.
   const Track* continued(const RecognizedObject& object) const;
-  /// Whether `object` would continue a track.
-  bool continues(const RecognizedObject& object) const { return continued(object) != nullptr; }
   /// Whether a new object may start a track: fewer than max_objects are kept.
   bool hasRoom(int new_tracks = 0) const
   {

@@ -141,35 +141,40 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   for (const Track& t : tracks)
     track_affines.push_back(
         composeAffine(in.memory[t.object.prototype_id].tableToOriginal(), t.object.prototype_to_image));
-  // The tracks of h's prototype whose centre is near h's.
-  const auto nearTracks = [&](const ObjectHypothesis& h) {
+  // Each group with the tracks of its prototype whose centre is near its own.
+  struct GroupStart
+  {
+    const ObjectHypothesis* group;
     std::vector<std::size_t> near;
+    bool on_held = false;
+  };
+  std::vector<GroupStart> groups;
+  for (const ObjectHypothesis& h : hypotheses)
+  {
+    GroupStart g{&h, {}};
     const cv::Point2d centre = applyAffine(h.table_to_image, in.memory[h.prototype].centre());
     for (std::size_t k = 0; k < tracks.size(); ++k)
     {
       const cv::Point2d track_centre = applyAffine(track_affines[k], in.memory[h.prototype].centre());
       if (tracks[k].object.prototype_id == h.prototype &&
           std::hypot(centre.x - track_centre.x, centre.y - track_centre.y) <= kTrackDistance)
-        near.push_back(k);
+      {
+        g.near.push_back(k);
+        g.on_held = g.on_held || tracks[k].object.state == ObjectState::kHeld;
+      }
     }
-    return near;
-  };
-  const auto onHeld = [&](const ObjectHypothesis& h) {
-    for (std::size_t k : nearTracks(h))
-      if (tracks[k].object.state == ObjectState::kHeld)
-        return true;
-    return false;
-  };
-  std::stable_partition(hypotheses.begin(), hypotheses.end(), [&](const ObjectHypothesis& h) { return !onHeld(h); });
-  if (hypotheses.size() > kMaxVerifiedHypotheses)
-    hypotheses.resize(kMaxVerifiedHypotheses);
+    groups.push_back(std::move(g));
+  }
+  std::stable_partition(groups.begin(), groups.end(), [](const GroupStart& g) { return !g.on_held; });
+  if (groups.size() > kMaxVerifiedHypotheses)
+    groups.resize(kMaxVerifiedHypotheses);
 
   std::vector<FitStart> starts;
   std::vector<bool> track_used(tracks.size(), false);
-  for (const auto& h : hypotheses)
+  for (const GroupStart& g : groups)
   {
-    FitStart start{h.prototype, {h.table_to_image}};
-    for (std::size_t k : nearTracks(h))
+    FitStart start{g.group->prototype, {g.group->table_to_image}};
+    for (std::size_t k : g.near)
     {
       start.affines.push_back(track_affines[k]);
       track_used[k] = true;

@@ -100,7 +100,6 @@ void ParticleFilter::reset()
   held_mask_.release();
   held_v_.clear();
   held_prototypes_.clear();
-  held_count_ = 0;
 }
 
 // ---------------------------------------------------------------------------
@@ -171,7 +170,7 @@ cv::Point2f ParticleFilter::drawFreePlace()
     return cv::Point2f(x, y);
   };
   cv::Point2f place = draw();
-  if (held_count_ == 0)
+  if (held_v_.empty())
     return place;
   for (int k = 1; k < kFreePlaceDraws && heldObjectAt(place.x, place.y) >= 0; ++k)
     place = draw();
@@ -193,7 +192,6 @@ void ParticleFilter::setHeldObjects(const std::vector<HeldObject>& held)
       throw InputError("setHeldObjects: held object " + std::to_string(k) + " names prototype " +
                        std::to_string(held[k].prototype) + ", not in the memory of " +
                        std::to_string(memory_->size()) + " prototypes");
-  held_count_ = 0;
   held_mask_.release();
   held_v_.clear();
   held_prototypes_.clear();
@@ -202,7 +200,6 @@ void ParticleFilter::setHeldObjects(const std::vector<HeldObject>& held)
   held_mask_ = cv::Mat::zeros(image_size_, CV_16UC1);
   for (const HeldObject& object : held)
   {
-    ++held_count_;
     held_v_.push_back(object.v_particles);
     if (prior_.probability(object.prototype) > 0.0)  // a prior of 0 keeps a prototype out
       held_prototypes_.push_back(object.prototype);
@@ -213,14 +210,14 @@ void ParticleFilter::setHeldObjects(const std::vector<HeldObject>& held)
     for (const cv::Point2d& p : object.outline)
       points.emplace_back(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
     cv::convexHull(points, hull);
-    cv::fillConvexPoly(held_mask_, hull, cv::Scalar(held_count_));
+    cv::fillConvexPoly(held_mask_, hull, cv::Scalar(static_cast<double>(held_v_.size())));  // k + 1
   }
 }
 
 int ParticleFilter::heldObjectAt(float x, float y) const
 {
   const int col = static_cast<int>(std::lround(x)), row = static_cast<int>(std::lround(y));
-  if (held_count_ == 0 || col < 0 || row < 0 || col >= held_mask_.cols || row >= held_mask_.rows)
+  if (held_v_.empty() || col < 0 || row < 0 || col >= held_mask_.cols || row >= held_mask_.rows)
     return -1;
   return static_cast<int>(held_mask_.at<std::uint16_t>(row, col)) - 1;
 }

@@ -178,16 +178,17 @@ std::vector<double> ParticleFilter::attentionWeights(const std::vector<std::vect
 std::vector<int> ParticleFilter::keepOnHeldObjects(std::vector<double>& log_weights) const
 {
   std::vector<int> kept;
-  if (held_count_ == 0)
+  const int held = static_cast<int>(held_v_.size());
+  if (held == 0)
     return kept;
   // Each V-particle on at most one held object: the one it supports, else
   // the one whose hull holds it.
   std::vector<int> on(v_.size(), -1);
-  for (int h = 0; h < held_count_; ++h)
+  for (int h = 0; h < held; ++h)
     for (int i : held_v_[h])
       if (i >= 0 && i < static_cast<int>(v_.size()))
         on[i] = h;
-  std::vector<std::vector<int>> inside(held_count_);
+  std::vector<std::vector<int>> inside(held);
   for (std::size_t i = 0; i < v_.size(); ++i)
   {
     const int h = on[i] >= 0 ? on[i] : heldObjectAt(v_[i].x, v_[i].y);
@@ -196,7 +197,7 @@ std::vector<int> ParticleFilter::keepOnHeldObjects(std::vector<double>& log_weig
   }
   // Together the held objects keep at most half of the V-particles.
   const std::size_t keep = static_cast<std::size_t>(
-      std::min(params_.held_v_particles, std::max(1, static_cast<int>(v_.size()) / (2 * held_count_))));
+      std::min(params_.held_v_particles, std::max(1, static_cast<int>(v_.size()) / (2 * held))));
   for (std::vector<int>& members : inside)
   {
     std::stable_sort(members.begin(), members.end(), [&](int a, int b) { return log_weights[a] > log_weights[b]; });
