@@ -74,6 +74,15 @@ amcr::Recognition toMsg(const amcr::RecognizedObject& object)
   return msg;
 }
 
+std::string stateName(std::uint8_t state)
+{
+  for (amcr::ObjectState s : {amcr::ObjectState::kTentative, amcr::ObjectState::kConfirmed, amcr::ObjectState::kHeld,
+                              amcr::ObjectState::kLost})
+    if (toMsg(s) == state)
+      return amcr::toString(s);
+  return "unknown";
+}
+
 amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::Header& header)
 {
   amcr::Recognitions msg;

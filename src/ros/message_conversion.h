@@ -2,6 +2,7 @@
 // the nodelet and testable on their own.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <std_msgs/Header.h>
@@ -20,6 +21,9 @@ amcr::Recognition toMsg(const amcr::RecognizedObject& object);
 /// A whole result, with the input image's header: the objects in the core's order (best score first),
 /// processing_ms the core's time_ms.
 amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::Header& header);
+
+/// The name of a Recognition.state constant ("tentative", ..., amcr::toString's), "unknown" for another value.
+std::string stateName(std::uint8_t state);
 
 /// The label table of a memory (empty when `memory` is null).
 amcr::PrototypeTable toMsg(const amcr::PrototypeMemory* memory, const std::string& directory,

@@ -5,28 +5,10 @@
 
 #include <diagnostic_msgs/DiagnosticStatus.h>
 
+#include "message_conversion.h"
+
 namespace amcr_ros
 {
-namespace
-{
-const char* stateName(std::uint8_t state)
-{
-  switch (state)
-  {
-    case amcr::Recognition::TENTATIVE:
-      return "tentative";
-    case amcr::Recognition::CONFIRMED:
-      return "confirmed";
-    case amcr::Recognition::HELD:
-      return "held";
-    case amcr::Recognition::LOST:
-      return "lost";
-    default:
-      return "unknown";
-  }
-}
-}  // namespace
-
 void RecognizerStats::received(std::uint32_t seq)
 {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -64,7 +46,7 @@ void RecognizerStats::processed(const amcr::Recognitions& out, const FilterState
   {
     char text[192];
     std::snprintf(text, sizeof(text), "%s%s #%d (%s, score %.2f, support %d)", leading_.empty() ? "" : ", ",
-                  o.label.c_str(), o.track_id, stateName(o.state), o.score, o.support);
+                  o.label.c_str(), o.track_id, stateName(o.state).c_str(), o.score, o.support);
     leading_ += text;
   }
 }

@@ -79,5 +79,8 @@ TEST(MessageConversion, StatesAndLostObjects)
   ASSERT_EQ(msg.lost.size(), 1u);
   EXPECT_EQ(msg.lost[0].track_id, 9);
   EXPECT_EQ(msg.lost[0].state, amcr::Recognition::LOST);
+  EXPECT_EQ(amcr_ros::stateName(amcr::Recognition::HELD), "held");
+  EXPECT_EQ(amcr_ros::stateName(amcr::Recognition::LOST), "lost");
+  EXPECT_EQ(amcr_ros::stateName(200), "unknown");
 }
 }  // namespace
