@@ -34,10 +34,10 @@ std::shared_ptr<const amcr::PrototypeMemory> memory()
   return m;
 }
 
-amcr::Params params(bool flow)
+amcr::Params params(bool flow, std::uint64_t seed = 1)
 {
   amcr::Params p;
-  p.seed = 1;
+  p.seed = seed;
   p.optical_flow = flow;
   return p;
 }
@@ -85,9 +85,9 @@ struct TrackingRun
   }
 };
 
-TrackingRun runMoving(bool flow, const std::vector<cv::Mat>& frames)
+TrackingRun runMoving(bool flow, const std::vector<cv::Mat>& frames, std::uint64_t seed = 1)
 {
-  amcr::Recognizer recognizer(params(flow), memory());
+  amcr::Recognizer recognizer(params(flow, seed), memory());
   TrackingRun run;
   run.frames = static_cast<int>(frames.size());
   for (int k = 0; k < run.frames; ++k)
@@ -123,8 +123,9 @@ TrackingRun runMoving(bool flow, const std::vector<cv::Mat>& frames)
 
 // The moving sequence: 200 frames; after the first correct decision
 // the arrow must be reported with its label and within the corner tolerance
-// in at least 95 % of the frames. The same frames without the flow are run
-// beside it and printed (an ablation, not asserted).
+// in at least 95 % of the frames, over the runs of three seeds together (one
+// run's share is chance: 94-100 % with seeds 1-6). The same frames without
+// the flow are run beside the first and printed (an ablation, not asserted).
 TEST(Tracking, FollowsAMovingObjectWithTheFlow)
 {
   amcr_test::Scene scene;
@@ -133,16 +134,23 @@ TEST(Tracking, FollowsAMovingObjectWithTheFlow)
   const std::vector<cv::Mat> frames = amcr_test::renderMovingSequence(
       scene, 200, [](int k) { return std::vector<Placement>{{ShapeId::kArrow, movingPose(k)}}; });
 
-  const TrackingRun with_flow = runMoving(true, frames);
+  int held = 0, since = 0, wrong_label = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed)
+  {
+    const TrackingRun with_flow = runMoving(true, frames, seed);
+    std::cout << "[ tracking ] seed " << seed << " with flow: " << with_flow.summary() << std::endl;
+    ASSERT_GE(with_flow.first_correct, 0) << "seed " << seed << ": " << with_flow.summary();
+    held += with_flow.held;
+    since += with_flow.since();
+    wrong_label += with_flow.wrong_label;
+  }
   const TrackingRun without_flow = runMoving(false, frames);
-  std::cout << "[ tracking ] with flow:    " << with_flow.summary() << std::endl;
-  std::cout << "[ tracking ] without flow: " << without_flow.summary() << std::endl;
-  RecordProperty("held_with_flow", with_flow.held);
+  std::cout << "[ tracking ] seed 1 without flow: " << without_flow.summary() << std::endl;
+  RecordProperty("held_with_flow", held);
   RecordProperty("held_without_flow", without_flow.held);
 
-  ASSERT_GE(with_flow.first_correct, 0) << with_flow.summary();
-  EXPECT_GE(with_flow.held, kMinHeldShare * with_flow.since()) << with_flow.summary();
-  EXPECT_LE(with_flow.wrong_label, (1.0 - kMinHeldShare) * with_flow.since()) << with_flow.summary();
+  EXPECT_GE(held, kMinHeldShare * since) << "held in " << held << " of " << since << " frames over three seeds";
+  EXPECT_LE(wrong_label, (1.0 - kMinHeldShare) * since) << "another label in " << wrong_label << " of " << since;
 }
 }  // namespace
 

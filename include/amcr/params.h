@@ -113,6 +113,9 @@ struct Params
   int flow_levels = 3;             ///< pyramid levels above the frame [0, 8]
   double flow_max_error = 40.0;    ///< a flow whose mean grey-level difference over the window exceeds this fails [1, 255]
   double frame_budget_ms = 0.0;    ///< time cap per frame, ms; 0 = a full iteration every frame [0, 10000]
+  /// Threads the V-particles' iterations run on; 0 = every core [0, 256].
+  /// The output is the same for any count.
+  int num_threads = 0;
 
   /// Context prior over the memory (paper 3.6, "context"): label -> weight
   /// of the prototype in the initial and re-seeded M-particles. Labels not

@@ -2,8 +2,13 @@
 // in the input image, each with its M-particles in the prototypes (the map
 // R^-1(v)); seeding, one V-particle's iteration (motion, measurement,
 // M-resampling with the injection of leading hypotheses) and V-resampling
-// with attention feedback. It owns the one seeded random generator: every
-// draw of a recognizer is made here, in a fixed order.
+// with attention feedback. It owns the random generators of a recognizer:
+// one stream per V-particle slot, for everything a V-particle's iteration,
+// seeding or resampling draws, and one for the V-resampling's draw (every
+// draw of a recognizer is made here). The V-particles' iterations are
+// independent and run on params.num_threads threads; a V-particle's draws
+// come from its own stream, so the result is the same for any thread count
+// (issue 16).
 //
 // What it learns from the result extraction comes in explicitly: evidence
 // per V-particle (addEvidence), the leading hypotheses to inject (setLeading)
@@ -88,6 +93,11 @@ public:
   /// M-particles (eqs. 5-6), its evidence, and the M-resampling.
   void update(int v_index, const RadialScanner& scanner);
 
+  /// The iterations of V-particles [first, last), on params.num_threads
+  /// threads: the same result as update() of each in index order. The
+  /// exploration policy's decide() is called from several threads at once.
+  void updateRange(int first, int last, const RadialScanner& scanner);
+
   /// Adds the verification's evidence to the V-particles it names.
   void addEvidence(const std::vector<EvidenceBonus>& evidence);
 
@@ -150,38 +160,55 @@ public:
   const cv::Size& imageSize() const { return image_size_; }
 
 private:
-  void seedV(VParticle& v, const RadialScanner& scanner);
+  /// What one V-particle slot's work draws from and writes besides its own
+  /// particles: its random stream and its scratch.
+  struct VWorkspace
+  {
+    explicit VWorkspace(Rng stream) : rng(stream) {}
+    Rng rng;
+    std::vector<ProposalCandidate> candidates;  // of the V-particle being seeded or updated
+    std::vector<double> weights;
+    std::vector<std::uint64_t> kld_bins;
+  };
+
+  /// Seeds V-particle `v` (a new pose and new M-particles in [begin, end)
+  /// of `set`).
+  void seedVAndM(VParticle& v, MParticleSet& set, std::size_t begin, std::size_t end, const RadialScanner& scanner,
+                 VWorkspace& work);
+  void seedV(VParticle& v, const RadialScanner& scanner, Rng& rng);
   /// The prototype of a new M-particle whose prior slot is `slot`: with
   /// probability scene_prior_share (when objects are held) a held object's
   /// prototype, else `slot`.
-  int scenePrototype(int slot);
+  int scenePrototype(int slot, Rng& rng) const;
   /// The probability that a new M-particle is in prototype p: the context
   /// prior mixed with the held objects' prototypes (scenePrototype).
   double seedingProbability(int p) const;
   /// A uniform place in the image outside the held objects (inside one only
   /// when they cover the whole image).
-  cv::Point2f drawFreePlace();
-  void seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const VParticle& v);
+  cv::Point2f drawFreePlace(Rng& rng) const;
+  void seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const VParticle& v, VWorkspace& work) const;
   /// A new M-particle: with probability index_share (when the V-particle's
   /// query found places) at one of them, else uniformly in `prototype` as
   /// in the paper; with the importance weight of the mixture.
-  void seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v);
-  void seedUniform(MParticleSet& set, std::size_t index, int prototype, const VParticle& v);
-  void seedAtCandidate(MParticleSet& set, std::size_t index, const ProposalCandidate& c);
+  void seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v, VWorkspace& work) const;
+  void seedUniform(MParticleSet& set, std::size_t index, int prototype, const VParticle& v, Rng& rng) const;
+  void seedAtCandidate(MParticleSet& set, std::size_t index, const ProposalCandidate& c, Rng& rng) const;
   void clearMeasurement(MParticleSet& set, std::size_t index) const;
   /// log(seeding density / mixture density) at M-particle `index` of `set`.
-  float logProposalWeight(const MParticleSet& set, std::size_t index, double share) const;
-  /// The places of the memory the V-particle's rays look like (candidates_).
-  void findCandidates(const VParticle& v);
+  float logProposalWeight(const MParticleSet& set, std::size_t index, double share,
+                          const std::vector<ProposalCandidate>& candidates) const;
+  /// The places of the memory the V-particle's rays look like (into work.candidates).
+  void findCandidates(const VParticle& v, VWorkspace& work) const;
   /// KLD-sampling (Fox 2003): how many M-particles the next generation of
   /// a V-particle needs, given `picks` drawn from the current one.
-  int kldCount(const std::vector<int>& picks, std::size_t begin);
+  int kldCount(const std::vector<int>& picks, std::size_t begin, std::vector<std::uint64_t>& bins) const;
   /// The proposal index of `memory` under `prior` (null when index_share
   /// is 0); its warnings go to `warnings`.
   std::shared_ptr<const ProposalIndex> buildIndex(const PrototypeMemory& memory, const PrototypePrior& prior,
-                                                  std::vector<std::string>& warnings) const;  /// ray_correspondence affine: gives M-particle `index` a view shape,
+                                                  std::vector<std::string>& warnings) const;
+  /// ray_correspondence affine: gives M-particle `index` a view shape,
   /// frontal or drawn (corrected_scan.h); true when it is not frontal.
-  bool drawShape(MParticleSet& set, std::size_t index);
+  bool drawShape(MParticleSet& set, std::size_t index, Rng& rng) const;
   /// Scans the V-particle's rays (refreshing v.rays) and updates its
   /// M-particles by eqs. 5-6 (particle_filter_measurement.cpp).
   void measure(int v_index, const RadialScanner& scanner);
@@ -189,7 +216,7 @@ private:
   void resampleM(int v_index);
   /// Places M-particle `index` of m_scratch_ at the pose leading hypothesis
   /// `h` implies for V-particle `v`, with likelihood `worst`.
-  void injectM(const VParticle& v, const LeadingHypothesis& h, std::size_t index, float worst);
+  void injectM(const VParticle& v, const LeadingHypothesis& h, std::size_t index, float worst, VWorkspace& work);
   std::vector<double> attentionWeights(const std::vector<std::vector<int>>& object_v_particles) const;
   /// The V-particles V-resampling carries over unchanged: of those on each
   /// held object (inside its hull or supporting it), the held_v_particles
@@ -203,19 +230,17 @@ private:
   std::unique_ptr<ExplorationPolicy> policy_;
   ObservationModel observation_;
   MotionModel motion_;
-  Rng rng_;
+  Rng rng_;                       // the V-resampling's draw
+  std::vector<VWorkspace> work_;  // one per V-particle slot
 
   cv::Size image_size_;
   std::vector<VParticle> v_;
   MParticleSet m_;
   MParticleSet m_scratch_;
-  std::vector<double> weight_scratch_;
   std::vector<LeadingHypothesis> leading_;  // injected at the M-resamplings
   std::shared_ptr<const ProposalIndex> index_;  // null when index_share is 0
   std::vector<std::string> index_warnings_;
-  std::vector<ProposalCandidate> candidates_;  // of the V-particle being seeded or updated
   std::vector<int> m_count_;                   // M-particles each V-particle holds
-  std::vector<std::uint64_t> kld_bins_;
   cv::Mat held_mask_;  // CV_16UC1 of image_size_: 0 free, k + 1 inside held object k's hull; empty: none held
   std::vector<std::vector<int>> held_v_;  // each held object's supporting V-particles (one entry per held object)
   std::vector<int> held_prototypes_;      // the held objects' prototypes whose prior is not 0

@@ -89,6 +89,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_INT(flow_levels, "", 0, 8, "pyramid levels of the optical flow above the frame"),
       AMCR_DOUBLE(flow_max_error, "grey levels", 1, 255, "mean grey-level difference over the window above which a flow fails"),
       AMCR_DOUBLE(frame_budget_ms, "ms", 0, 10000, "time cap per frame; an iteration spans frames when it does not fit; 0 = none"),
+      AMCR_INT(num_threads, "", 0, 256, "threads the V-particles' iterations run on; 0 = every core; same output for any count"),
       AMCR_INT(seed, "", 0, 9.007199254740992e15, "seed of the random generator"),
   };
   return table;

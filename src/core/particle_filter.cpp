@@ -14,6 +14,7 @@
 #include "amcr/corrected_scan.h"
 #include "amcr/errors.h"
 #include "amcr/heading_proposal.h"
+#include "amcr/parallel_for.h"
 #include "amcr/ray_directions.h"
 #include "amcr/resource_bounds.h"
 
@@ -54,6 +55,7 @@ ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const Proto
   , rng_(params.seed)
 {
   index_ = buildIndex(*memory_, prior_, index_warnings_);
+  reset();
 }
 
 std::shared_ptr<const ProposalIndex> ParticleFilter::buildIndex(const PrototypeMemory& memory,
@@ -90,9 +92,11 @@ void ParticleFilter::setMemory(std::shared_ptr<const PrototypeMemory> memory)
 void ParticleFilter::reset()
 {
   rng_ = Rng(params_.seed);
+  work_.clear();
+  for (Rng& stream : Rng::streams(params_.seed, static_cast<std::size_t>(params_.num_v_particles)))
+    work_.emplace_back(stream);
   v_.clear();
   m_count_.clear();
-  candidates_.clear();
   m_ = MParticleSet();
   m_scratch_ = MParticleSet();
   leading_.clear();
@@ -115,25 +119,30 @@ void ParticleFilter::seed(const RadialScanner& scanner)
   m_count_.assign(v_.size(), static_cast<int>(per_v));
   m_.resize(v_.size() * per_v);
   m_scratch_.resize(m_.size());
-  for (std::size_t i = 0; i < v_.size(); ++i)
-  {
-    seedV(v_[i], scanner);
-    findCandidates(v_[i]);
-    seedMRange(m_, i * per_v, (i + 1) * per_v, v_[i]);
-  }
+  parallelFor(static_cast<int>(v_.size()), resolveThreads(params_.num_threads), [&](int i) {
+    seedVAndM(v_[i], m_, i * per_v, (i + 1) * per_v, scanner, work_[i]);
+  });
   leading_.clear();
+}
+
+void ParticleFilter::seedVAndM(VParticle& v, MParticleSet& set, std::size_t begin, std::size_t end,
+                               const RadialScanner& scanner, VWorkspace& work)
+{
+  seedV(v, scanner, work.rng);
+  findCandidates(v, work);
+  seedMRange(set, begin, end, v, work);
 }
 
 // Spec "Where V-particles start matters": prefer places enclosed by edges
 // (inside closed regions), trying `seed_attempts` random places.
-void ParticleFilter::seedV(VParticle& v, const RadialScanner& scanner)
+void ParticleFilter::seedV(VParticle& v, const RadialScanner& scanner, Rng& rng)
 {
   int best_enclosure = -1;
   for (int attempt = 0; attempt < params_.seed_attempts; ++attempt)
   {
-    const cv::Point2f place = drawFreePlace();
+    const cv::Point2f place = drawFreePlace(rng);
     const float x = place.x, y = place.y;
-    const float theta = static_cast<float>(rng_.uniform(-M_PI, M_PI));
+    const float theta = static_cast<float>(rng.uniform(-M_PI, M_PI));
     // Rays that meet an edge, but not at once: texture is not a region.
     RayHit hits[kFeatureRays];
     scanFeatureRays(scanner, x, y, theta, hits);
@@ -161,12 +170,12 @@ constexpr int kFreePlaceDraws = 32;  // uniform draws before a free place is pic
 
 // Inhibition of return (issue 15): what a held object shows is explained,
 // so no V-particle starts there.
-cv::Point2f ParticleFilter::drawFreePlace()
+cv::Point2f ParticleFilter::drawFreePlace(Rng& rng) const
 {
-  const auto draw = [this] {
+  const auto draw = [this, &rng] {
     // x before y, in two statements: the order of a call's arguments is unspecified.
-    const float x = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.width - 2.0)));
-    const float y = static_cast<float>(rng_.uniform(1.0, std::max(1.0, image_size_.height - 2.0)));
+    const float x = static_cast<float>(rng.uniform(1.0, std::max(1.0, image_size_.width - 2.0)));
+    const float y = static_cast<float>(rng.uniform(1.0, std::max(1.0, image_size_.height - 2.0)));
     return cv::Point2f(x, y);
   };
   cv::Point2f place = draw();
@@ -181,7 +190,7 @@ cv::Point2f ParticleFilter::drawFreePlace()
   cv::findNonZero(held_mask_ == 0, free);
   if (free.empty())
     return place;
-  const cv::Point& at = free[rng_.index(free.size())];
+  const cv::Point& at = free[rng.index(free.size())];
   return cv::Point2f(static_cast<float>(at.x), static_cast<float>(at.y));
 }
 
@@ -222,19 +231,20 @@ int ParticleFilter::heldObjectAt(float x, float y) const
   return static_cast<int>(held_mask_.at<std::uint16_t>(row, col)) - 1;
 }
 
-void ParticleFilter::seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const VParticle& v)
+void ParticleFilter::seedMRange(MParticleSet& set, std::size_t begin, std::size_t end, const VParticle& v,
+                                VWorkspace& work) const
 {
   for (std::size_t j = 0; j < end - begin; ++j)
-    seedM(set, begin + j, scenePrototype(prior_.slots()[j]), v);
+    seedM(set, begin + j, scenePrototype(prior_.slots()[j], work.rng), v, work);
 }
 
 // The scene's context (issue 15): what is held is likely to be in view
 // again, as a copy, so the prior of new M-particles leans towards it.
-int ParticleFilter::scenePrototype(int slot)
+int ParticleFilter::scenePrototype(int slot, Rng& rng) const
 {
-  if (held_prototypes_.empty() || params_.scene_prior_share <= 0.0 || rng_.uniform() >= params_.scene_prior_share)
+  if (held_prototypes_.empty() || params_.scene_prior_share <= 0.0 || rng.uniform() >= params_.scene_prior_share)
     return slot;
-  return held_prototypes_[rng_.index(held_prototypes_.size())];
+  return held_prototypes_[rng.index(held_prototypes_.size())];
 }
 
 double ParticleFilter::seedingProbability(int p) const
@@ -251,14 +261,15 @@ double ParticleFilter::seedingProbability(int p) const
 // finds table rays like the V-particle's. Its importance weight
 // (logProposalWeight) keeps the filter a correct SIR for the paper's uniform
 // seeding; with the index off nothing is drawn and the weight is 1.
-void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v)
+void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v,
+                           VWorkspace& work) const
 {
-  const double share = candidates_.empty() ? 0.0 : params_.index_share;
-  if (share > 0.0 && rng_.uniform() < share)
-    seedAtCandidate(set, index, candidates_[rng_.index(candidates_.size())]);
+  const double share = work.candidates.empty() ? 0.0 : params_.index_share;
+  if (share > 0.0 && work.rng.uniform() < share)
+    seedAtCandidate(set, index, work.candidates[work.rng.index(work.candidates.size())], work.rng);
   else
-    seedUniform(set, index, prototype, v);
-  set.log_proposal[index] = share > 0.0 ? logProposalWeight(set, index, share) : 0.f;
+    seedUniform(set, index, prototype, v, work.rng);
+  set.log_proposal[index] = share > 0.0 ? logProposalWeight(set, index, share, work.candidates) : 0.f;
 }
 
 namespace
@@ -268,14 +279,17 @@ namespace
 double candidateSpread(int stride) { return std::max(0.5, 0.5 * stride); }
 }  // namespace
 
-void ParticleFilter::seedAtCandidate(MParticleSet& set, std::size_t index, const ProposalCandidate& c)
+void ParticleFilter::seedAtCandidate(MParticleSet& set, std::size_t index, const ProposalCandidate& c,
+                                     Rng& rng) const
 {
   const Prototype& p = (*memory_)[c.prototype];
   const double spread = candidateSpread(params_.index_stride);
-  const double x = c.x + rng_.gaussian(spread), y = c.y + rng_.gaussian(spread);
+  // x before y, in two statements: the order of evaluation of an expression's operands is unspecified.
+  const double x = c.x + rng.gaussian(spread);
+  const double y = c.y + rng.gaussian(spread);
   set.x[index] = static_cast<float>(std::min(std::max(x, 0.0), p.width() - 1.0));
   set.y[index] = static_cast<float>(std::min(std::max(y, 0.0), p.height() - 1.0));
-  set.theta[index] = static_cast<float>(wrapAngle(binToAngle(c.bin) + rng_.uniform(-0.5, 0.5) * kBinAngle));
+  set.theta[index] = static_cast<float>(wrapAngle(binToAngle(c.bin) + rng.uniform(-0.5, 0.5) * kBinAngle));
   set.prototype[index] = c.prototype;
   for (int k = 0; k < 3; ++k)
     set.shape[k][index] = kFrontalShape[k];  // the descriptor matches similarities (proposal_index.h)
@@ -296,14 +310,15 @@ void ParticleFilter::clearMeasurement(MParticleSet& set, std::size_t index) cons
 // q = (1 - share) pi + share q_index, q_index the mean of Gaussian kernels at
 // the candidates of x's prototype. The headings are proposed in both parts
 // (by the candidate, by the heading proposal) and are not weighted, as before.
-float ParticleFilter::logProposalWeight(const MParticleSet& set, std::size_t index, double share) const
+float ParticleFilter::logProposalWeight(const MParticleSet& set, std::size_t index, double share,
+                                        const std::vector<ProposalCandidate>& candidates) const
 {
   const int p = set.prototype[index];
   const double uniform = seedingProbability(p) / std::max<std::size_t>(1, (*memory_)[p].interior().size());
   const double spread = candidateSpread(params_.index_stride);
-  const double norm = 1.0 / (2.0 * M_PI * spread * spread * candidates_.size());
+  const double norm = 1.0 / (2.0 * M_PI * spread * spread * candidates.size());
   double kernel = 0.0;
-  for (const ProposalCandidate& c : candidates_)
+  for (const ProposalCandidate& c : candidates)
   {
     if (c.prototype != p)
       continue;
@@ -314,27 +329,28 @@ float ParticleFilter::logProposalWeight(const MParticleSet& set, std::size_t ind
   return static_cast<float>(std::log(uniform) - std::log(mixture));
 }
 
-void ParticleFilter::findCandidates(const VParticle& v)
+void ParticleFilter::findCandidates(const VParticle& v, VWorkspace& work) const
 {
-  candidates_.clear();
+  work.candidates.clear();
   if (index_)
-    candidates_ = index_->query(v.rays, params_.index_candidates);
+    work.candidates = index_->query(v.rays, params_.index_candidates);
 }
 
 // A uniform position inside the prototype; the heading from the proposal
 // (heading_proposal.h) when the V-particle sees enough edges, else uniform.
 // With ray_correspondence affine, first a view shape, which the heading
 // proposal then matches the rays under.
-void ParticleFilter::seedUniform(MParticleSet& set, std::size_t index, int prototype, const VParticle& v)
+void ParticleFilter::seedUniform(MParticleSet& set, std::size_t index, int prototype, const VParticle& v,
+                                 Rng& rng) const
 {
   const Prototype& p = (*memory_)[prototype];
-  const cv::Point& at = p.interior()[rng_.index(p.interior().size())];
+  const cv::Point& at = p.interior()[rng.index(p.interior().size())];
   set.x[index] = static_cast<float>(at.x);
   set.y[index] = static_cast<float>(at.y);
   int bin = -1;
   if (params_.ray_correspondence == RayCorrespondence::kAffine)
   {
-    if (drawShape(set, index))
+    if (drawShape(set, index, rng))
     {
       const float shape[3] = {set.shape[0][index], set.shape[1][index], set.shape[2][index]};
       bin = bestHeadingBin(p, at.x, at.y, v.rays, RayOffsets(shape, v.theta));
@@ -350,7 +366,7 @@ void ParticleFilter::seedUniform(MParticleSet& set, std::size_t index, int proto
       set.shape[k][index] = kFrontalShape[k];
     bin = bestHeadingBin(p, at.x, at.y, v.rays);
   }
-  const double heading = bin >= 0 ? binToAngle(bin) : rng_.uniform(-M_PI, M_PI);
+  const double heading = bin >= 0 ? binToAngle(bin) : rng.uniform(-M_PI, M_PI);
   set.theta[index] = static_cast<float>(wrapAngle(heading));
   set.prototype[index] = prototype;
   clearMeasurement(set, index);
@@ -360,17 +376,17 @@ void ParticleFilter::seedUniform(MParticleSet& set, std::size_t index, int proto
 // them anisotropy log-uniform in [1, max_anisotropy] along a uniform axis
 // (views are often near frontal, and those must not lose their particles to
 // the search). The scale is left to the triangle fit.
-bool ParticleFilter::drawShape(MParticleSet& set, std::size_t index)
+bool ParticleFilter::drawShape(MParticleSet& set, std::size_t index, Rng& rng) const
 {
   float shape[3] = {kFrontalShape[0], kFrontalShape[1], kFrontalShape[2]};
   const bool oblique =
-      params_.max_anisotropy > 1.0 && params_.oblique_share > 0.0 && rng_.uniform() < params_.oblique_share;
+      params_.max_anisotropy > 1.0 && params_.oblique_share > 0.0 && rng.uniform() < params_.oblique_share;
   if (oblique)
   {
     // The axis first, then the anisotropy, in two statements: the order of a
     // call's arguments is unspecified (this is the order GCC took).
-    const float axis = static_cast<float>(rng_.uniform(0.0, M_PI));
-    const float anisotropy = static_cast<float>(std::exp(rng_.uniform(0.0, std::log(params_.max_anisotropy))));
+    const float axis = static_cast<float>(rng.uniform(0.0, M_PI));
+    const float anisotropy = static_cast<float>(std::exp(rng.uniform(0.0, std::log(params_.max_anisotropy))));
     obliqueShape(anisotropy, axis, shape);
   }
   for (int k = 0; k < 3; ++k)
@@ -387,16 +403,24 @@ void ParticleFilter::update(int v_index, const RadialScanner& scanner)
   const MRange r = mRange(v_index);
 
   // Control from the policy; the M-particles follow through their A (paper 4.2).
+  Rng& rng = work_[v_index].rng;
   const double heading_before = v.theta;
-  const Control u = policy_->decide(v, scanner, rng_);
+  const Control u = policy_->decide(v, scanner, rng);
   MotionModel::moveV(v, u);
   v.theta = static_cast<float>(wrapAngle(v.theta));
-  motion_.moveM(m_, r.begin, r.end, heading_before, u, rng_);
+  motion_.moveM(m_, r.begin, r.end, heading_before, u, rng);
   ++v.age;
 
   measure(v_index, scanner);
   accumulateEvidence(v_index);
   resampleM(v_index);
+}
+
+// The V-particles are independent within an iteration (paper 3.6): each
+// writes only its own particles and scratch, and draws from its own stream.
+void ParticleFilter::updateRange(int first, int last, const RadialScanner& scanner)
+{
+  parallelFor(last - first, resolveThreads(params_.num_threads), [&](int k) { update(first + k, scanner); });
 }
 
 // Evidence that v lies on an interpretable shape: the log of its
@@ -456,7 +480,7 @@ double ParticleFilter::meanMParticles() const
 int ParticleFilter::applyFlow(const std::vector<VParticleMove>& moves, const RadialScanner& scanner)
 {
   const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
-  int lost = 0;
+  std::vector<int> lost;
   for (std::size_t i = 0; i < v_.size(); ++i)
   {
     VParticle& v = v_[i];
@@ -473,15 +497,16 @@ int ParticleFilter::applyFlow(const std::vector<VParticleMove>& moves, const Rad
         v.y = move.y;
         break;
       case VParticleMove::Kind::kLost:
-        seedV(v, scanner);
-        findCandidates(v);
-        seedMRange(m_, i * per_v, (i + 1) * per_v, v);
-        m_count_[i] = static_cast<int>(per_v);
-        ++lost;
+        lost.push_back(static_cast<int>(i));
         break;
     }
   }
-  return lost;
+  parallelFor(static_cast<int>(lost.size()), resolveThreads(params_.num_threads), [&](int k) {
+    const std::size_t i = static_cast<std::size_t>(lost[k]);
+    seedVAndM(v_[i], m_, i * per_v, (i + 1) * per_v, scanner, work_[i]);
+    m_count_[i] = static_cast<int>(per_v);
+  });
+  return static_cast<int>(lost.size());
 }
 
 void ParticleFilter::displace(const std::vector<cv::Point2f>& displacement)

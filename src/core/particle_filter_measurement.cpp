@@ -22,7 +22,8 @@ void ParticleFilter::measure(int v_index, const RadialScanner& scanner)
     v_valid[k] = hits[k].valid;
   }
   v.rays = raySignature(hits);
-  findCandidates(v);  // for the M-particles this iteration seeds
+  VWorkspace& work = work_[v_index];
+  findCandidates(v, work);  // for the M-particles this iteration seeds
   for (int t = 1; t < kTriangleRays; ++t)
   {
     const RayHit hit = scanner.scanAngle(v.x, v.y, v.theta + t * kTriangleBinStep * kBinAngle);
@@ -35,7 +36,7 @@ void ParticleFilter::measure(int v_index, const RadialScanner& scanner)
   const MRange r = mRange(v_index);
   for (std::size_t i = r.begin; i < r.end; ++i)
     if (!insideTable((*memory_)[m_.prototype[i]], nearestTablePixel(m_.x[i], m_.y[i])))
-      seedM(m_, i, m_.prototype[i], v);
+      seedM(m_, i, m_.prototype[i], v, work);
   // The relational update of paper 4.1 and eqs. 5-6 (ObservationModel::measure).
   observation_.measure(*memory_, rayEnds(v, v_dist, v_valid), m_, r.begin, r.end);
 }

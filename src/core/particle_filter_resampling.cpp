@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "amcr/corrected_scan.h"
+#include "amcr/parallel_for.h"
 #include "amcr/particle_filter.h"
 #include "amcr/resampling.h"
 
@@ -28,14 +29,16 @@ constexpr double kObjectAttentionShare = 0.2;
 void ParticleFilter::resampleM(int v_index)
 {
   const VParticle& v = v_[v_index];
+  VWorkspace& work = work_[v_index];
+  std::vector<double>& weights = work.weights;
   const MRange r = mRange(v_index);
   const std::size_t begin = r.begin;
   const int count = static_cast<int>(r.size());
-  weight_scratch_.resize(count);
+  weights.resize(count);
   float worst = std::numeric_limits<float>::infinity();
   for (int j = 0; j < count; ++j)
   {
-    weight_scratch_[j] = m_.log_likelihood[begin + j] + m_.log_proposal[begin + j];
+    weights[j] = m_.log_likelihood[begin + j] + m_.log_proposal[begin + j];
     worst = std::min(worst, m_.log_likelihood[begin + j]);
   }
   const int capacity = mParticlesPerV();
@@ -43,8 +46,8 @@ void ParticleFilter::resampleM(int v_index)
   int next = capacity;
   if (params_.kld_error > 0.0)
   {
-    picks = systematicResampleLog(weight_scratch_, capacity, rng_);
-    next = kldCount(picks, begin);
+    picks = systematicResampleLog(weights, capacity, work.rng);
+    next = kldCount(picks, begin, work.kld_bins);
   }
   // The re-seeded share is one of the budget: a V-particle whose particles
   // agree keeps exploring at the rate of a spread one (up to a quarter of
@@ -65,7 +68,7 @@ void ParticleFilter::resampleM(int v_index)
   }
   else
   {
-    picks = systematicResampleLog(weight_scratch_, n_draw, rng_);
+    picks = systematicResampleLog(weights, n_draw, work.rng);
   }
   int k = 0;
   for (; k < n_draw; ++k)
@@ -74,9 +77,9 @@ void ParticleFilter::resampleM(int v_index)
     m_scratch_.log_proposal[begin + k] = 0.f;  // weighted once, at this resampling
   }
   for (int j = 0; j < n_inject; ++j, ++k)
-    injectM(v, leading_[j % leading_.size()], begin + k, worst);
+    injectM(v, leading_[j % leading_.size()], begin + k, worst, work);
   for (int j = 0; j < n_reseed; ++j, ++k)
-    seedM(m_scratch_, begin + k, scenePrototype(prior_.draw(rng_)), v);
+    seedM(m_scratch_, begin + k, scenePrototype(prior_.draw(work.rng), work.rng), v, work);
   m_.copyRange(m_scratch_, begin, begin + next);
   m_count_[v_index] = next;
 }
@@ -93,9 +96,10 @@ constexpr float kKldAngle = static_cast<float>(20.0 * M_PI / 180.0);  // rad
 // divergence between them and the posterior below kld_error with
 // probability 1 - delta (kld_z its upper quantile), for k occupied bins of
 // (prototype, position, heading); amcl's pf_resample_limit is the same bound.
-int ParticleFilter::kldCount(const std::vector<int>& picks, std::size_t begin)
+int ParticleFilter::kldCount(const std::vector<int>& picks, std::size_t begin,
+                             std::vector<std::uint64_t>& bins) const
 {
-  kld_bins_.clear();
+  bins.clear();
   for (int pick : picks)
   {
     const std::size_t i = begin + pick;
@@ -104,15 +108,15 @@ int ParticleFilter::kldCount(const std::vector<int>& picks, std::size_t begin)
       return static_cast<std::uint64_t>(static_cast<std::uint16_t>(static_cast<int>(std::floor(value / size)) + 64));
     };
     const std::uint64_t bx = cell(m_.x[i], kKldCell), by = cell(m_.y[i], kKldCell), bt = cell(m_.theta[i], kKldAngle);
-    kld_bins_.push_back(static_cast<std::uint64_t>(m_.prototype[i]) << 48 | bx << 32 | by << 16 | bt);
+    bins.push_back(static_cast<std::uint64_t>(m_.prototype[i]) << 48 | bx << 32 | by << 16 | bt);
   }
-  std::sort(kld_bins_.begin(), kld_bins_.end());
-  const int bins = static_cast<int>(std::unique(kld_bins_.begin(), kld_bins_.end()) - kld_bins_.begin());
+  std::sort(bins.begin(), bins.end());
+  const int occupied = static_cast<int>(std::unique(bins.begin(), bins.end()) - bins.begin());
   const int capacity = mParticlesPerV();
   const int least = std::min(params_.min_m_particles_per_v, capacity);
-  if (bins <= 1)
+  if (occupied <= 1)
     return least;
-  const double k = bins - 1;
+  const double k = occupied - 1;
   const double b = 2.0 / (9.0 * k);
   const double c = 1.0 - b + std::sqrt(b) * params_.kld_z;
   const double n = std::ceil(k / (2.0 * params_.kld_error) * c * c * c);
@@ -122,21 +126,23 @@ int ParticleFilter::kldCount(const std::vector<int>& picks, std::size_t begin)
 // The pose of v in the prototype that hypothesis h implies (its position,
 // its heading mapped through h's affine), with motion noise; a pose outside
 // the prototype is seeded instead.
-void ParticleFilter::injectM(const VParticle& v, const LeadingHypothesis& h, std::size_t index, float worst)
+void ParticleFilter::injectM(const VParticle& v, const LeadingHypothesis& h, std::size_t index, float worst,
+                             VWorkspace& work)
 {
+  Rng& rng = work.rng;
   const Affine& a = h.image_to_table;
   const Prototype& p = (*memory_)[h.prototype];
   const cv::Point2d at = applyAffine(a, cv::Point2d(v.x, v.y));
   if (at.x < 0 || at.y < 0 || at.x > p.width() - 1 || at.y > p.height() - 1)
   {
-    seedM(m_scratch_, index, h.prototype, v);
+    seedM(m_scratch_, index, h.prototype, v, work);
     return;
   }
   const double hx = std::cos(v.theta), hy = std::sin(v.theta);
-  m_scratch_.x[index] = static_cast<float>(at.x + rng_.gaussian(params_.motion_noise_translation));
-  m_scratch_.y[index] = static_cast<float>(at.y + rng_.gaussian(params_.motion_noise_translation));
+  m_scratch_.x[index] = static_cast<float>(at.x + rng.gaussian(params_.motion_noise_translation));
+  m_scratch_.y[index] = static_cast<float>(at.y + rng.gaussian(params_.motion_noise_translation));
   m_scratch_.theta[index] = static_cast<float>(std::atan2(a(1, 0) * hx + a(1, 1) * hy, a(0, 0) * hx + a(0, 1) * hy) +
-                                               rng_.gaussian(params_.motion_noise_rotation));
+                                               rng.gaussian(params_.motion_noise_rotation));
   m_scratch_.prototype[index] = h.prototype;
   for (int e = 0; e < 6; ++e)
     m_scratch_.affine[e][index] = static_cast<float>(a(e / 3, e % 3));
@@ -244,36 +250,44 @@ std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
       ++copies[picks[k]];
     }
 
-  std::vector<VParticle> next(n);
-  std::vector<int> next_count(n, static_cast<int>(per_v));
+  // The first slot copying a V-particle keeps its heading; the later ones turn.
+  std::vector<bool> turned(n, false);
   std::vector<bool> used(n, false);
   for (int k = 0; k < n; ++k)
-  {
+    if (source[k] >= 0)
+    {
+      turned[k] = used[source[k]];
+      used[source[k]] = true;
+    }
+
+  // Each slot is independent: it reads the old particles and writes its
+  // own, with its own stream.
+  std::vector<VParticle> next(n);
+  std::vector<int> next_count(n, static_cast<int>(per_v));
+  parallelFor(n, resolveThreads(params_.num_threads), [&](int k) {
     const int from = source[k];
     const std::size_t begin = static_cast<std::size_t>(k) * per_v, end = begin + per_v;
     if (from < 0)
     {
-      seedV(next[k], scanner);
-      findCandidates(next[k]);
-      seedMRange(m_scratch_, begin, end, next[k]);
-      continue;
+      seedVAndM(next[k], m_scratch_, begin, end, scanner, work_[k]);
+      return;
     }
     next[k] = v_[from];
     next_count[k] = m_count_[from];
     for (std::size_t j = 0; j < static_cast<std::size_t>(m_count_[from]); ++j)
       m_scratch_.copyFrom(m_, static_cast<std::size_t>(from) * per_v + j, begin + j);
     const std::size_t copied_end = begin + static_cast<std::size_t>(next_count[k]);
-    if (used[from])
+    if (turned[k])
     {
       // A copy turns to a random heading so the copies explore apart; its
       // M-particles turn with it through their A.
-      const Control turn{rng_.uniform(-M_PI, M_PI), 0.0};
-      motion_.moveM(m_scratch_, begin, copied_end, next[k].theta, turn, rng_);
+      Rng& rng = work_[k].rng;
+      const Control turn{rng.uniform(-M_PI, M_PI), 0.0};
+      motion_.moveM(m_scratch_, begin, copied_end, next[k].theta, turn, rng);
       MotionModel::moveV(next[k], turn);
       next[k].theta = static_cast<float>(wrapAngle(next[k].theta));
     }
-    used[from] = true;
-  }
+  });
   for (auto& v : next)
   {
     v.log_evidence_sum = 0.0;

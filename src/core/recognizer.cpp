@@ -1,7 +1,10 @@
 // Radial-AMCR per frame: the phases in order, and the values they pass on.
 #include "amcr/recognizer.h"
 
+#include <algorithm>
+
 #include "amcr/object_extractor.h"
+#include "amcr/parallel_for.h"
 #include "amcr/radial_scan.h"
 #include "amcr/resource_bounds.h"
 #include "amcr/working_scale.h"
@@ -132,10 +135,12 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
 
 // Under a frame budget a round over the V-particles spans frames (the paper
 // splits an iteration over two); a step never goes past the end of a round,
-// and updates at least one V-particle.
+// and updates at least one V-particle. The V-particles are updated a batch
+// at a time, a V-particle per thread (the whole round without a budget).
 double Recognizer::runUpdates(const RadialScanner& scanner, double frame_start, bool& round_done)
 {
   const int n = static_cast<int>(filter_.vParticles().size());
+  const int batch = budget_.limited() ? resolveThreads(params_.num_threads) : n;
   int updated = 0;
   round_done = false;
   const double updates_start = budget_.now();
@@ -143,9 +148,11 @@ double Recognizer::runUpdates(const RadialScanner& scanner, double frame_start, 
   {
     if (budget_.limited() && updated > 0 && budget_.exhausted(budget_.now() - frame_start))
       break;
-    filter_.update(next_v_, scanner);
-    ++updated;
-    if (++next_v_ == n)
+    const int last = std::min(n, next_v_ + batch);
+    filter_.updateRange(next_v_, last, scanner);
+    updated += last - next_v_;
+    next_v_ = last;
+    if (next_v_ == n)
     {
       next_v_ = 0;
       ++iteration_;
