@@ -17,46 +17,15 @@
 #include "amcr/prototype.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
+#include "bench_scenes.h"
 #include "scene_drawing.h"
 
 namespace
 {
+using amcr_bench::cachedMemory;
 using amcr_test::ShapeId;
 
-/// A memory of `count` prototypes cycling through the drawn shapes.
-std::shared_ptr<const amcr::PrototypeMemory> memoryOf(int count)
-{
-  auto memory = std::make_shared<amcr::PrototypeMemory>();
-  const std::vector<ShapeId>& shapes = amcr_test::allShapes();
-  for (int i = 0; i < count; ++i)
-  {
-    const ShapeId id = shapes[i % shapes.size()];
-    memory->add(amcr_test::shapeName(id) + "_" + std::to_string(i), amcr_test::drawPrototype(id), amcr::Params());
-  }
-  return memory;
-}
-
-/// The memory of `count` drawn prototypes, built once per count.
-std::shared_ptr<const amcr::PrototypeMemory> cachedMemory(int count)
-{
-  static std::vector<std::shared_ptr<const amcr::PrototypeMemory>> memories(128);
-  if (!memories[count])
-    memories[count] = memoryOf(count);
-  return memories[count];
-}
-
-/// 640x480 frames showing the arrow over clutter.
-const std::vector<cv::Mat>& frames()
-{
-  static const std::vector<cv::Mat> sequence = [] {
-    amcr_test::Scene scene;
-    scene.objects.push_back({ShapeId::kArrow, amcr_test::makeAffine(amcr_test::prototypeCentre(), {320, 240},
-                                                                     0.6, 0.9, 0.8, 0.2)});
-    scene.clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
-    return amcr_test::renderSequence(scene, 16);
-  }();
-  return sequence;
-}
+const std::vector<cv::Mat>& frames() { return amcr_bench::staticFrames(); }
 
 // One iteration (paper 3.6) on a 640x480 frame with the paper's counts
 // (m_particles_per_v 0, no proposal index, no KLD-sampling): args

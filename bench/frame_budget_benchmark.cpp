@@ -12,32 +12,12 @@
 #include <benchmark/benchmark.h>
 
 #include "amcr/recognizer.h"
+#include "bench_scenes.h"
 #include "scene_drawing.h"
 
 namespace
 {
 using amcr_test::ShapeId;
-
-amcr::Affine movingPose(int frame)
-{
-  const double t = 2.0 * M_PI * frame / 200.0;
-  return amcr_test::makeAffine(amcr_test::prototypeCentre(), {320.0 + 110.0 * std::sin(t), 240.0 + 55.0 * std::sin(2.0 * t)},
-                               (20.0 + 2.5 * frame) * M_PI / 180.0, 0.6, 0.52, 0.15);
-}
-
-const std::vector<cv::Mat>& movingFrames()
-{
-  static const std::vector<cv::Mat> frames = [] {
-    amcr_test::Scene scene;
-    scene.objects.push_back({ShapeId::kArrow, movingPose(0)});
-    scene.clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
-    scene.clutter.seed = 301;
-    return amcr_test::renderMovingSequence(scene, 200, [](int k) {
-      return std::vector<amcr_test::Placement>{{ShapeId::kArrow, movingPose(k)}};
-    });
-  }();
-  return frames;
-}
 
 void BM_FrameBudget(benchmark::State& state)
 {
@@ -46,7 +26,7 @@ void BM_FrameBudget(benchmark::State& state)
   params.num_v_particles = 30;
   params.frame_budget_ms = static_cast<double>(state.range(0));
   amcr::Recognizer recognizer(params, memory);
-  const std::vector<cv::Mat>& sequence = movingFrames();  // rendered before the clock runs
+  const std::vector<cv::Mat>& sequence = amcr_bench::movingFrames();  // rendered before the clock runs
   std::size_t k = 0;
   double slowest = 0.0, iterations = 0.0;
   long frames = 0, over = 0;

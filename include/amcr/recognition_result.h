@@ -71,6 +71,16 @@ struct RecognizedObject
 /// image points, both affines, the homography, anisotropy and viewing angle.
 void mapImageSide(RecognizedObject& object, const Affine& image_map);
 
+/// Where the time of one Recognizer::step went, ms on the recognizer's
+/// clock; together about time_ms.
+struct StepTimes
+{
+  double prepare_ms = 0.0;     ///< grey image, working scale, blur, the scanner
+  double flow_ms = 0.0;        ///< pyramid, Lucas-Kanade, the V-particles' and tracks' moves (re-seeding included)
+  double updates_ms = 0.0;     ///< the V-particles' iterations (paper 3.6)
+  double extraction_ms = 0.0;  ///< clusters, fits, verification, tracks, attention, V-resampling
+};
+
 /// The result of one Recognizer::step. Consumers take it as it is: the
 /// objects are in their order, and time_ms is the step's time.
 struct RecognitionResult
@@ -80,6 +90,7 @@ struct RecognitionResult
   /// Processing time of this step, ms, on the recognizer's clock (the one
   /// the frame budget uses): authoritative, there is no need to time step() again.
   double time_ms = 0.0;
+  StepTimes times;            ///< time_ms by phase
   int flow_failures = 0;      ///< V-particles re-seeded because their optical flow failed
   int converged_v_particles = 0;  ///< V-particles with a focused M-cluster
   double mean_m_particles = 0.0;  ///< M-particles per V-particle, mean (KLD-sampling adapts it)

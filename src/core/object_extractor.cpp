@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "amcr/outline_fit.h"
+#include "amcr/parallel_for.h"
 #include "amcr/perspective_choice.h"
 #include "amcr/viewing_angle.h"
 
@@ -188,34 +189,39 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
 }
 
 /// Each start refined on the image's edges and verified; of a start's
-/// affines the best fit. Best score first (stable).
+/// affines the best fit. Best score first (stable). The starts are fitted
+/// in parallel (params.num_threads), each into its own slot, and kept in
+/// their order: the same candidates whatever the thread count.
 std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vector<FitStart>& starts)
 {
-  std::vector<Candidate> candidates;
-  for (const auto& start : starts)
-  {
+  const int threads = resolveThreads(in.params.num_threads);
+  std::vector<Candidate> fitted(starts.size());
+  std::vector<char> found(starts.size(), 0);
+  parallelFor(static_cast<int>(starts.size()), threads, [&](int s) {
+    const FitStart& start = starts[s];
     const Prototype& p = in.memory[start.prototype];
-    Candidate best;
-    bool found = false;
     for (const Affine& affine : start.affines)
     {
       Candidate candidate;
       const Affine refined = refineOnEdges(p, in.scanner, affine, in.params.refine_iterations, in.params.refine_search);
-      if (describeObject(in, start.prototype, refined, candidate) && (!found || candidate.object.score > best.object.score))
+      if (describeObject(in, start.prototype, refined, candidate) &&
+          (!found[s] || candidate.object.score > fitted[s].object.score))
       {
-        best = std::move(candidate);
-        found = true;
+        fitted[s] = std::move(candidate);
+        found[s] = 1;
       }
     }
-    if (found)
-      candidates.push_back(std::move(best));
-  }
+  });
+  std::vector<Candidate> candidates;
+  for (std::size_t s = 0; s < starts.size(); ++s)
+    if (found[s])
+      candidates.push_back(std::move(fitted[s]));
   const auto byScore = [](const Candidate& a, const Candidate& b) { return a.object.score > b.object.score; };
   std::stable_sort(candidates.begin(), candidates.end(), byScore);
   // The homography, for the best few that could be reported (its fit costs
   // about as much as the rest of the extraction).
-  for (std::size_t i = 0; i < candidates.size() && i < kMaxPerspectiveFits; ++i)
-    fitPerspective(in, candidates[i]);
+  parallelFor(static_cast<int>(std::min(candidates.size(), kMaxPerspectiveFits)), threads,
+              [&](int i) { fitPerspective(in, candidates[i]); });
   std::stable_sort(candidates.begin(), candidates.end(), byScore);
   return candidates;
 }

@@ -80,6 +80,8 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   const cv::Mat scan_image = prepareScanImage(grey, params_.blur_sigma);
   const RadialScanner scanner(scan_image, params_.edge_threshold, params_.max_ray_length);
   RecognitionResult result;
+  double phase_start = budget_.now();
+  result.times.prepare_ms = phase_start - start;
 
   // A new image size (or an empty filter) starts over; else the V-particles
   // ride the optical flow from the previous frame. Two inputs may share a
@@ -98,14 +100,17 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
     if (!fresh && tracker_.ready())
       result.flow_failures = followFlow(scanner);
   }
+  result.times.flow_ms = budget_.now() - phase_start;  // with the seeding of a fresh start
 
   // Paper 3.6: move every V-particle, predict and weight its M-particles,
   // resample them.
   bool round_done = false;
+  phase_start = budget_.now();
   result.iterations = runUpdates(scanner, start, round_done);
 
   // The result extraction reads the filter; the filter takes its feedback.
   const double extraction_start = budget_.now();
+  result.times.updates_ms = extraction_start - phase_start;
   // min_object_size is in input px (what a user measures in the image).
   Extraction extraction =
       extractObjects(filter_, scanner, tracker_.tracks(), params_.min_object_size * scale_.factor());
@@ -129,7 +134,9 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
 
   result.mean_m_particles = filter_.meanMParticles();
   result.iteration = iteration_;
-  result.time_ms = budget_.now() - start;
+  const double end = budget_.now();
+  result.times.extraction_ms = end - extraction_start;
+  result.time_ms = end - start;
   return result;
 }
 
