@@ -698,12 +698,17 @@ def latency_section(out):
         return "Nodelet latency: not measured in this run.\n"
     with open(path) as f:
         lat = json.load(f)
-    return ("Nodelet latency (amcr_node, %s): %d frames of 640x480 at %s Hz, %d prototypes, %d V x %d M: "
+    counts = "the default counts" if lat.get("counts") == "defaults" else "the paper's counts (30 V x 60 M)"
+    threads = lat.get("threads", 1)
+    return ("Nodelet latency (amcr_node, %s): %d frames of 640x480 at %s Hz, %d prototypes, %s, %s: "
             "processing time median %.1f ms (mean %.1f); publish-to-receipt latency median %.1f ms, "
-            "95th percentile %.1f ms; %d of %d frames answered.\n"
-            % (lat["what"], lat["frames"], lat["rate"], lat["prototypes"], lat["v"], lat["m"],
+            "95th percentile %.1f ms (median of the first third %.1f ms, of the last %.1f ms); "
+            "%d of %d frames answered (the input queue holds one frame).\n"
+            % (lat["what"], lat["frames"], lat["rate"], lat["prototypes"], counts,
+               "every core" if threads == 0 else "%d thread(s)" % threads,
                lat["processing_median_ms"], lat["processing_mean_ms"], lat["latency_median_ms"],
-               lat["latency_p95_ms"], lat["answered"], lat["frames"]))
+               lat["latency_p95_ms"], lat.get("latency_first_third_median_ms", float("nan")),
+               lat.get("latency_last_third_median_ms", float("nan")), lat["answered"], lat["frames"]))
 
 
 SUITES_TEXT = """\
