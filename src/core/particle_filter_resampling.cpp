@@ -100,9 +100,11 @@ int ParticleFilter::kldCount(const std::vector<int>& picks, std::size_t begin,
                              std::vector<std::uint64_t>& bins) const
 {
   bins.clear();
-  for (int pick : picks)
+  for (std::size_t k = 0; k < picks.size(); ++k)
   {
-    const std::size_t i = begin + pick;
+    if (k > 0 && picks[k] == picks[k - 1])
+      continue;  // the same particle again (systematic picks come in runs): the same bin
+    const std::size_t i = begin + picks[k];
     // Through int: a float cast straight to an unsigned type is undefined below 0.
     const auto cell = [](float value, float size) {
       return static_cast<std::uint64_t>(static_cast<std::uint16_t>(static_cast<int>(std::floor(value / size)) + 64));
