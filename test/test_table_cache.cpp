@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -176,6 +177,31 @@ TEST_F(TableCacheTest, OneFilePerImageAndNoTemporaryFileLeft)
   ASSERT_EQ(names.size(), 3u);
   for (const std::string& name : names)
     EXPECT_EQ(fs::path(name).extension(), ".table") << name;
+}
+
+TEST_F(TableCacheTest, TwoLoadsAtOnceLeaveSoundFiles)
+{
+  // Each writer renames a whole file of its own over the name: whichever
+  // comes last, the file is whole.
+  std::vector<std::thread> loads;
+  std::vector<std::vector<std::string>> warnings(4);
+  for (std::size_t k = 0; k < warnings.size(); ++k)
+    loads.emplace_back([this, &warnings, k] {
+      amcr::PrototypeMemory::loadDirectory(images_, params_,
+                                           [&warnings, k](const std::string& w) { warnings[k].push_back(w); });
+    });
+  for (std::thread& t : loads)
+    t.join();
+  for (const auto& lines : warnings)
+    EXPECT_TRUE(lines.empty()) << lines.front();
+  Warnings after;
+  const amcr::PrototypeMemory memory = load(&after);
+  EXPECT_EQ(memory.cacheCounts().read, 3u);
+  EXPECT_TRUE(after.lines.empty()) << after.all();
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(cache_))
+    files += entry.path().extension() == ".table" ? 1 : 100;  // a temporary file counts 100
+  EXPECT_EQ(files, 3u);
 }
 
 TEST_F(TableCacheTest, TruncatedFileIsRefusedAndRebuilt)
