@@ -4,14 +4,18 @@
 //
 //   rosrun amcr amcr_benchmark [--benchmark_filter=Step]
 //
-// One core: OpenCV's own threads are switched off before anything runs.
+// One core: OpenCV's own threads are switched off before anything runs
+// (BM_MemoryBuild sets the count it is given, and restores it).
 // scripts/benchmark runs it with --benchmark_format=json for the report's speed section.
+#include <chrono>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "amcr/proposal_index.h"
 #include "amcr/prototype.h"
@@ -131,6 +135,75 @@ void BM_PrototypeTable(benchmark::State& state)
   state.counters["table_MB"] = bytes / 1e6;
 }
 BENCHMARK(BM_PrototypeTable)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
+
+/// A directory of `count` drawn prototype images (as memoryOf), written once.
+const amcr_test::TempDir& imageDirectory(int count)
+{
+  static std::vector<std::unique_ptr<amcr_test::TempDir>> directories(128);
+  if (!directories[count])
+  {
+    directories[count] = std::make_unique<amcr_test::TempDir>();
+    const std::vector<ShapeId>& shapes = amcr_test::allShapes();
+    for (int i = 0; i < count; ++i)
+    {
+      const ShapeId id = shapes[i % shapes.size()];
+      cv::imwrite(directories[count]->file(amcr_test::shapeName(id) + "_" + std::to_string(i) + ".png"),
+                  amcr_test::drawPrototype(id));
+    }
+  }
+  return *directories[count];
+}
+
+// A whole memory as the nodelet loads it (issue 16): the tables of a
+// directory of images, then the proposal index. Args: prototypes, OpenCV
+// threads, cache (0: none, 1: cold, emptied before each run, so the files
+// are written, 2: warm, every table read from it).
+void BM_MemoryBuild(benchmark::State& state)
+{
+  const int count = static_cast<int>(state.range(0)), cache = static_cast<int>(state.range(2));
+  const amcr_test::TempDir& images = imageDirectory(count);
+  const amcr_test::TempDir cache_dir;
+  amcr::Params params;
+  params.table_cache_dir = cache == 0 ? "none" : cache_dir.file("tables");
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(static_cast<int>(state.range(1)));
+  if (cache == 2)
+    amcr::PrototypeMemory::loadDirectory(images.path(), params);
+  std::size_t read = 0;
+  double tables_ms = 0.0, index_ms = 0.0;
+  using Clock = std::chrono::steady_clock;
+  const auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  for (auto _ : state)
+  {
+    if (cache == 1)
+    {
+      state.PauseTiming();
+      std::filesystem::remove_all(cache_dir.file("tables"));
+      state.ResumeTiming();
+    }
+    const Clock::time_point start = Clock::now();
+    const amcr::PrototypeMemory memory = amcr::PrototypeMemory::loadDirectory(images.path(), params);
+    const Clock::time_point loaded = Clock::now();
+    const amcr::ProposalIndex index(memory, params.index_stride);
+    tables_ms += ms(loaded - start);
+    index_ms += ms(Clock::now() - loaded);
+    read = memory.cacheCounts().read;
+    benchmark::DoNotOptimize(index.size());
+  }
+  cv::setNumThreads(threads);
+  // The two parts: the index's k-d tree is built whatever the cache holds.
+  state.counters["from_cache"] = static_cast<double>(read);
+  state.counters["tables_ms"] = state.iterations() ? tables_ms / state.iterations() : 0.0;
+  state.counters["index_ms"] = state.iterations() ? index_ms / state.iterations() : 0.0;
+}
+BENCHMARK(BM_MemoryBuild)
+    ->Args({70, 1, 0})
+    ->Args({70, 2, 0})
+    ->Args({70, 2, 1})
+    ->Args({70, 2, 2})
+    ->Args({70, 1, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 }  // namespace
 
 int main(int argc, char** argv)

@@ -31,6 +31,14 @@ namespace amcr
 /// "truncated JPEG 'a.jpg': no end-of-image marker after the scan data".
 cv::Mat readImageFile(const std::string& path, int flags = cv::IMREAD_UNCHANGED);
 
+/// readImageFile() in two steps, for a caller that needs the file's bytes
+/// (the table cache names an image by them): the file checks and its
+/// bytes, then the format checks and the decoding. Both throw InputError as
+/// readImageFile() does.
+std::vector<unsigned char> readImageFileBytes(const std::string& path);
+cv::Mat decodeImageFile(const std::vector<unsigned char>& bytes, const std::string& path,
+                        int flags = cv::IMREAD_UNCHANGED);
+
 /// Throws InputError naming `what` when the bytes of a JPEG or a PNG are
 /// damaged as readImageFile() describes; other formats pass.
 void checkImageBytes(const std::vector<unsigned char>& bytes, const std::string& what);

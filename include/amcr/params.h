@@ -50,6 +50,11 @@ struct Params
 
   // Prototype memory.
   int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]
+  /// Directory of the cached lookup tables (table_cache.h), read when a
+  /// memory is loaded from a directory: "" = $ROS_HOME/amcr/tables, or
+  /// ~/.ros/amcr/tables when ROS_HOME is not set; "none" = no cache;
+  /// otherwise an absolute path or one starting with "~/".
+  std::string table_cache_dir;
 
   // Radial edge scans in the working image: the input reduced to
   // working_resolution (working_scale.h). Every length in px below is of the
@@ -133,7 +138,8 @@ struct Params
   /// m_particles_per_prototype alone exceeds kMaxMParticles
   /// (resource_bounds.h; the prototypes multiply it in the filter), or
   /// num_v_particles x m_particles_per_v does, or min_m_particles_per_v is
-  /// above a non-zero m_particles_per_v.
+  /// above a non-zero m_particles_per_v; and for a table_cache_dir that
+  /// is relative.
   void validate() const;
 };
 
@@ -160,7 +166,7 @@ const std::vector<ParameterInfo>& parameterTable();
 Params loadParams(const std::string& yaml_path, Params params = Params());
 
 /// Sets one parameter by name from a number, or (likelihood_form,
-/// deviation_space, prototype_priors) from a string. Throws ParameterError for an unknown name.
+/// deviation_space, prototype_priors, table_cache_dir) from a string. Throws ParameterError for an unknown name.
 void setParameter(Params& params, const std::string& name, double value);
 void setParameter(Params& params, const std::string& name, const std::string& value);
 

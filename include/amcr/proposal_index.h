@@ -92,8 +92,16 @@ private:
     short x, y, bin;
     float log_mean;  // mean log table distance of the 8 rays
   };
-  /// Adds the entries of prototype `p` at `stride`; returns its places.
-  int indexPrototype(const Prototype& prototype, int p, int stride, std::vector<RayDescriptor>& rows);
+  /// The entries of one prototype, and its places (pixels with an entry).
+  struct Part
+  {
+    std::vector<Entry> entries;
+    std::vector<RayDescriptor> rows;
+    int places = 0;
+  };
+  /// The entries of prototype `p` at `stride`, or at a smaller stride
+  /// where that leaves it too few places (see the constructor).
+  static Part indexPrototype(const Prototype& prototype, int p, int stride);
   std::vector<ProposalCandidate> candidates(float query_log_mean, const std::vector<int>& indices,
                                             const std::vector<float>& dists) const;
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -87,11 +88,21 @@ public:
   /// Memory held by the lookup table, bytes.
   std::size_t tableBytes() const { return table_.size(); }
 
+  /// Everything but the label as bytes (prototype_bytes.cpp), for the table
+  /// cache; fromBytes() gives the same prototype back under `label`. Both in
+  /// the machine's byte order. fromBytes() throws MemoryError naming what
+  /// does not fit (a size, a point outside the table, bytes missing or left).
+  std::vector<std::uint8_t> toBytes() const;
+  static std::shared_ptr<const Prototype> fromBytes(const std::string& label, const std::uint8_t* data,
+                                                    std::size_t size);
+
 private:
+  Prototype() = default;  // for fromBytes()
   void buildTable(double edge_threshold);
 
-  double blur_sigma_;
   void buildOutline();
+
+  double blur_sigma_ = 1.0;
 
   std::string label_;
   cv::Mat mask_;

@@ -10,6 +10,7 @@
 
 #include "amcr/params.h"
 #include "amcr/prototype.h"
+#include "amcr/table_cache.h"
 
 namespace amcr
 {
@@ -23,8 +24,13 @@ public:
 
   /// Loads every image file of `directory` (sorted by name; label = file name
   /// without extension). Unreadable files and images with no shape are
-  /// skipped with a warning naming the file. Throws MemoryError when the
-  /// directory is missing, empty, or no prototype is left.
+  /// skipped with a warning naming the file. The tables are built on
+  /// OpenCV's threads (cv::parallel_for_), or read from the table cache
+  /// params.table_cache_dir names (table_cache.h); a cache file that is
+  /// refused, or a cache that cannot be used, is a warning too. The memory
+  /// is the same whatever the thread count and whatever came from the
+  /// cache. Throws MemoryError when the directory is missing, empty, or no
+  /// prototype is left.
   static PrototypeMemory loadDirectory(const std::string& directory, const Params& params,
                                        const WarningSink& warn = WarningSink());
 
@@ -42,7 +48,14 @@ public:
   /// Memory held by all lookup tables, bytes.
   std::size_t tableBytes() const;
 
+  /// How loadDirectory() found the tables (all zero for a memory built by add()).
+  const TableCacheCounts& cacheCounts() const { return cache_counts_; }
+
 private:
+  /// Appends a prototype; MemoryError when its label is taken.
+  void append(std::shared_ptr<const Prototype> prototype);
+
   std::vector<std::shared_ptr<const Prototype>> prototypes_;
+  TableCacheCounts cache_counts_;
 };
 }  // namespace amcr

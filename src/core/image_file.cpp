@@ -140,8 +140,18 @@ void checkPng(const Bytes& b, const std::string& what)
   }
   throw InputError("truncated PNG " + what + ": no IEND chunk at the end");
 }
+}  // namespace
 
-Bytes readBytes(const std::string& path)
+void checkImageBytes(const Bytes& bytes, const std::string& what)
+{
+  static const unsigned char kPng[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF)
+    checkJpeg(bytes, what);
+  else if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPng, 8) == 0)
+    checkPng(bytes, what);
+}
+
+Bytes readImageFileBytes(const std::string& path)
 {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
@@ -164,20 +174,11 @@ Bytes readBytes(const std::string& path)
     throw InputError("cannot read image '" + path + "': a read error");
   return bytes;
 }
-}  // namespace
 
-void checkImageBytes(const Bytes& bytes, const std::string& what)
-{
-  static const unsigned char kPng[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
-  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF)
-    checkJpeg(bytes, what);
-  else if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPng, 8) == 0)
-    checkPng(bytes, what);
-}
+cv::Mat readImageFile(const std::string& path, int flags) { return decodeImageFile(readImageFileBytes(path), path, flags); }
 
-cv::Mat readImageFile(const std::string& path, int flags)
+cv::Mat decodeImageFile(const Bytes& bytes, const std::string& path, int flags)
 {
-  const Bytes bytes = readBytes(path);
   const std::string what = "'" + path + "'";
   if (bytes.empty())
     throw InputError("cannot read image " + what + ": the file is empty");

@@ -125,6 +125,8 @@ const char* wordParameter(const std::string& name)
     return "a word (affine or paper)";
   if (name == "prototype_priors")
     return "a map of label: weight";
+  if (name == "table_cache_dir")
+    return "a directory (absolute or ~/...), empty for the default, or none";
   return nullptr;
 }
 
@@ -136,6 +138,16 @@ std::string rangeText(const ParameterInfo& info)
     out << " " << info.unit;
   return out.str();
 }
+/// table_cache_dir: a relative path would depend on the working directory
+/// of whatever loads the memory (a nodelet manager's is not chosen by the user).
+void checkTableCacheDir(const std::string& dir)
+{
+  if (dir.empty() || dir == "none" || dir[0] == '/' || dir.compare(0, 2, "~/") == 0)
+    return;
+  throw ParameterError("parameter 'table_cache_dir' = '" + dir +
+                       "' must be an absolute path, a path starting with '~/', empty (the default place) or 'none'");
+}
+
 /// Pairs of values where one makes the other meaningless.
 void checkConsistency(const Params& p)
 {
@@ -181,6 +193,7 @@ void Params::validate() const
   }
   for (const auto& prior : prototype_priors)
     checkPrior(prior.first, prior.second);
+  checkTableCacheDir(table_cache_dir);
   checkConsistency(*this);
 }
 
@@ -253,6 +266,12 @@ void setParameter(Params& params, const std::string& name, const std::string& va
   if (name == "prototype_priors")
   {
     params.prototype_priors = parsePriors(value);
+    return;
+  }
+  if (name == "table_cache_dir")
+  {
+    checkTableCacheDir(value);
+    params.table_cache_dir = value;
     return;
   }
   if (findNumeric(name))

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/flann.hpp>
 
 #include "amcr/errors.h"
@@ -70,32 +71,32 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
 {
   if (stride < 1)
     throw ParameterError("index_stride must be at least 1 table px, got " + std::to_string(stride));
-  std::vector<RayDescriptor> rows;
+  // Each prototype's entries into its own part, on OpenCV's threads, then
+  // merged in prototype order: the index does not depend on the thread count.
+  std::vector<int> indexed;
   for (std::size_t p = 0; p < memory.size(); ++p)
+    if (active.empty() || active[p])
+      indexed.push_back(static_cast<int>(p));
+  std::vector<Part> parts(indexed.size());
+  cv::parallel_for_(cv::Range(0, static_cast<int>(indexed.size())), [&](const cv::Range& range) {
+    for (int i = range.start; i < range.end; ++i)
+      parts[i] = indexPrototype(memory[indexed[i]], indexed[i], stride);
+  });
+  std::vector<RayDescriptor> rows;
+  for (std::size_t i = 0; i < parts.size(); ++i)
   {
-    if (!active.empty() && !active[p])
-      continue;
-    const Prototype& prototype = memory[p];
-    // A prototype with too few places at the stride (a small prototype_size,
-    // a thin shape) is indexed at half the stride, down to every pixel.
-    int places = 0;
-    for (int at_stride = stride; at_stride >= 1; at_stride = at_stride == 1 ? 0 : std::max(1, at_stride / 2))
+    if (parts[i].places < kMinPlacesPerPrototype)
     {
-      const std::size_t first = entries_.size();
-      places = indexPrototype(prototype, static_cast<int>(p), at_stride, rows);
-      if (places >= kMinPlacesPerPrototype)
-        break;
-      entries_.resize(first);
-      rows.resize(first);
-    }
-    if (places < kMinPlacesPerPrototype)
-    {
-      left_out_.push_back(prototype.label());
+      const std::string& label = memory[indexed[i]].label();
+      left_out_.push_back(label);
       if (warn)
-        warn("prototype '" + prototype.label() + "' is left out of the proposal index: " + std::to_string(places) +
+        warn("prototype '" + label + "' is left out of the proposal index: " + std::to_string(parts[i].places) +
              " of its pixels see an edge on all 8 rays within the table's reach (it needs " +
              std::to_string(kMinPlacesPerPrototype) + "); the uniform proposal still seeds it");
+      continue;
     }
+    entries_.insert(entries_.end(), parts[i].entries.begin(), parts[i].entries.end());
+    rows.insert(rows.end(), parts[i].rows.begin(), parts[i].rows.end());
   }
   if (entries_.empty())
     throw MemoryError("the proposal index has no usable entry: no prototype has " +
@@ -114,26 +115,34 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
 
 ProposalIndex::~ProposalIndex() = default;
 
-int ProposalIndex::indexPrototype(const Prototype& prototype, int p, int stride, std::vector<RayDescriptor>& rows)
+ProposalIndex::Part ProposalIndex::indexPrototype(const Prototype& prototype, int p, int stride)
 {
-  int places = 0;
-  for (const cv::Point& at : prototype.interior())
+  // A prototype with too few places at the stride (a small prototype_size,
+  // a thin shape) is indexed at half the stride, down to every pixel.
+  Part part;
+  for (int at_stride = stride; at_stride >= 1; at_stride = at_stride == 1 ? 0 : std::max(1, at_stride / 2))
   {
-    if (at.x % stride != 0 || at.y % stride != 0)
-      continue;
-    const std::size_t before = entries_.size();
-    for (int bin = 0; bin < kDirectionBins; ++bin)
+    part = Part();
+    for (const cv::Point& at : prototype.interior())
     {
-      RayDescriptor d;
-      float log_mean = 0.f;
-      if (!describeTable(prototype, at.x, at.y, bin, d, log_mean))
+      if (at.x % at_stride != 0 || at.y % at_stride != 0)
         continue;
-      entries_.push_back({p, static_cast<short>(at.x), static_cast<short>(at.y), static_cast<short>(bin), log_mean});
-      rows.push_back(d);
+      const std::size_t before = part.entries.size();
+      for (int bin = 0; bin < kDirectionBins; ++bin)
+      {
+        RayDescriptor d;
+        float log_mean = 0.f;
+        if (!describeTable(prototype, at.x, at.y, bin, d, log_mean))
+          continue;
+        part.entries.push_back({p, static_cast<short>(at.x), static_cast<short>(at.y), static_cast<short>(bin), log_mean});
+        part.rows.push_back(d);
+      }
+      part.places += part.entries.size() > before ? 1 : 0;
     }
-    places += entries_.size() > before ? 1 : 0;
+    if (part.places >= kMinPlacesPerPrototype)
+      break;
   }
-  return places;
+  return part;
 }
 
 std::vector<ProposalCandidate> ProposalIndex::candidates(float query_log_mean, const std::vector<int>& indices,

@@ -1,10 +1,11 @@
 #include "amcr/prototype_memory.h"
 
 #include <algorithm>
+#include <exception>
 #include <filesystem>
 
 #include "amcr/errors.h"
-#include "amcr/image_file.h"
+#include "amcr/prototype_file.h"
 #include "amcr/resource_bounds.h"
 
 namespace amcr
@@ -61,23 +62,57 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
   const std::vector<fs::path> files = listFiles(directory, warn);
   checkTableBound(0, files.size(), params.prototype_size);
 
+  std::string cache_off;
+  const TableCache cache(tableCacheDirectory(params.table_cache_dir, &cache_off));
+  if (warn && !cache_off.empty())
+    warn(cache_off);
+  if (warn && !cache.problem().empty())
+    warn(cache.problem());
+
+  // Each file into its own slot, on OpenCV's threads; warnings and errors
+  // are taken in file order afterwards, so the memory and what is reported
+  // do not depend on the thread count.
+  std::vector<LoadedPrototype> loaded(files.size());
+  std::vector<std::exception_ptr> failed(files.size());
+  cv::parallel_for_(cv::Range(0, static_cast<int>(files.size())), [&](const cv::Range& range) {
+    for (int i = range.start; i < range.end; ++i)
+    {
+      try
+      {
+        loaded[i] = loadPrototypeFile(files[i].string(), files[i].stem().string(), params, cache);
+      }
+      catch (...)  // not a bad file (bad_alloc, a cv::Exception): rethrown on this thread below
+      {
+        failed[i] = std::current_exception();
+      }
+    }
+  });
+
   PrototypeMemory memory;
-  for (const auto& file : files)
+  for (std::size_t i = 0; i < files.size(); ++i)
   {
+    if (failed[i])
+      std::rethrow_exception(failed[i]);
+    for (const std::string& w : loaded[i].warnings)
+      if (warn)
+        warn(w);
+    if (!loaded[i].prototype)
+      continue;
     try
     {
-      memory.add(file.stem().string(), readImageFile(file.string()), params);
+      memory.append(std::move(loaded[i].prototype));
     }
-    catch (const InputError& e)  // the file
+    catch (const MemoryError& e)  // a label taken by another extension
     {
       if (warn)
-        warn("skipped '" + file.string() + "': " + e.what());
+        warn("skipped '" + files[i].string() + "': " + e.what());
+      continue;
     }
-    catch (const MemoryError& e)  // the image
-    {
-      if (warn)
-        warn("skipped '" + file.string() + "': " + e.what());
-    }
+    TableCacheCounts& counts = memory.cache_counts_;
+    counts.read += loaded[i].from_cache ? 1 : 0;
+    counts.built += loaded[i].from_cache ? 0 : 1;
+    counts.written += loaded[i].written ? 1 : 0;
+    counts.refused += loaded[i].refused ? 1 : 0;
   }
   if (memory.empty())
     throw MemoryError("no usable prototype in '" + directory + "' (" + std::to_string(files.size()) +
@@ -90,8 +125,15 @@ void PrototypeMemory::add(const std::string& label, const cv::Mat& image, const 
   if (find(label) >= 0)
     throw MemoryError("prototype label '" + label + "' is already in the memory");
   checkTableBound(tableBytes(), 1, params.prototype_size);
-  prototypes_.push_back(std::make_shared<const Prototype>(label, image, params.prototype_size, params.edge_threshold,
-                                                      params.blur_sigma));
+  append(std::make_shared<const Prototype>(label, image, params.prototype_size, params.edge_threshold,
+                                           params.blur_sigma));
+}
+
+void PrototypeMemory::append(std::shared_ptr<const Prototype> prototype)
+{
+  if (find(prototype->label()) >= 0)
+    throw MemoryError("prototype label '" + prototype->label() + "' is already in the memory");
+  prototypes_.push_back(std::move(prototype));
 }
 
 int PrototypeMemory::find(const std::string& label) const

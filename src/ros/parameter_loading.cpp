@@ -51,7 +51,7 @@ amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::stri
     if (notes)
       notes->push_back(info.name + " = " + std::to_string(value));
   }
-  for (const char* name : {"likelihood_form", "deviation_space", "ray_correspondence"})
+  for (const char* name : {"likelihood_form", "deviation_space", "ray_correspondence", "table_cache_dir"})
   {
     if (!private_nh.hasParam(name))
       continue;

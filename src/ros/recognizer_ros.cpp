@@ -132,7 +132,9 @@ std::string RecognizerRos::loadLocked(const std::string& directory)
     restart(std::move(replacement));
     for (const std::string& w : recognizer_->filter().indexWarnings())
       ROS_WARN("proposal index: %s", w.c_str());
-    ROS_INFO("loaded %zu prototypes from '%s'", memory->size(), directory.c_str());
+    const amcr::TableCacheCounts& tables = memory->cacheCounts();
+    ROS_INFO("loaded %zu prototypes from '%s' (tables: %zu read from the cache, %zu built, %zu stored)",
+             memory->size(), directory.c_str(), tables.read, tables.built, tables.written);
     stats_.setPrototypes(memory->size(), "");
     return "";
   }

@@ -1,0 +1,463 @@
+// The table cache and the parallel table build (issue 16, "Speed"): a
+// second load reads the tables back byte for byte; a cache file that is
+// truncated, damaged, stale (other parameters) or not a table file at all
+// is detected, reported with the reason, rebuilt and replaced, never read;
+// a cache that cannot be written to is a warning; the memory and the
+// proposal index do not depend on the thread count.
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <unistd.h>
+
+#include "amcr/content_hash.h"
+#include "amcr/errors.h"
+#include "amcr/params.h"
+#include "amcr/proposal_index.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/table_cache.h"
+#include "scene_drawing.h"
+
+namespace
+{
+namespace fs = std::filesystem;
+using amcr_test::ShapeId;
+
+struct Warnings
+{
+  std::vector<std::string> lines;
+  amcr::PrototypeMemory::WarningSink sink()
+  {
+    return [this](const std::string& line) { lines.push_back(line); };
+  }
+  bool mention(const std::string& a, const std::string& b = "") const
+  {
+    for (const auto& l : lines)
+      if (l.find(a) != std::string::npos && l.find(b) != std::string::npos)
+        return true;
+    return false;
+  }
+  std::string all() const
+  {
+    std::string s;
+    for (const auto& l : lines)
+      s += "\n  " + l;
+    return s.empty() ? " (none)" : s;
+  }
+};
+
+/// A directory of drawn prototypes and a cache directory beside it.
+class TableCacheTest : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    images_ = root_.file("prototypes");
+    cache_ = root_.file("cache");
+    fs::create_directory(images_);
+    for (ShapeId id : {ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar})
+      ASSERT_TRUE(cv::imwrite(images_ + "/" + amcr_test::shapeName(id) + ".png", amcr_test::drawPrototype(id)));
+    params_.prototype_size = 64;  // small tables: fast tests
+    params_.table_cache_dir = cache_;
+  }
+
+  amcr::PrototypeMemory load(Warnings* warnings = nullptr) const
+  {
+    return amcr::PrototypeMemory::loadDirectory(images_, params_,
+                                                warnings ? warnings->sink() : amcr::PrototypeMemory::WarningSink());
+  }
+
+  /// The cache file of one image (there is one per image).
+  std::string cacheFile(const std::string& label) const
+  {
+    for (const auto& entry : fs::directory_iterator(cache_))
+      if (entry.path().filename().string().rfind(label + "-", 0) == 0)
+        return entry.path().string();
+    return "";
+  }
+
+  std::vector<char> readAll(const std::string& path) const
+  {
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }
+
+  void writeAll(const std::string& path, const std::vector<char>& bytes) const
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+
+  /// Loads once to fill the cache, spoils the arrow's file with `spoil`,
+  /// and checks the next load refuses it with `reason`, builds the table
+  /// (equal to a fresh build) and replaces the file with a sound one.
+  template <typename Spoil>
+  void expectRefusedAndRebuilt(Spoil spoil, const std::string& reason)
+  {
+    load();
+    const std::string file = cacheFile("arrow");
+    ASSERT_FALSE(file.empty());
+    std::vector<char> bytes = readAll(file);
+    spoil(bytes);
+    writeAll(file, bytes);
+
+    Warnings warnings;
+    const amcr::PrototypeMemory memory = load(&warnings);
+    EXPECT_EQ(memory.cacheCounts().refused, 1u);
+    EXPECT_EQ(memory.cacheCounts().built, 1u);
+    EXPECT_EQ(memory.cacheCounts().read, 2u);
+    EXPECT_EQ(memory.cacheCounts().written, 1u);
+    EXPECT_TRUE(warnings.mention(file, reason)) << "expected a line naming " << file << " and '" << reason
+                                                << "'; warnings:" << warnings.all();
+    EXPECT_EQ(warnings.lines.size(), 1u) << warnings.all();
+    expectSameTables(memory, freshBuild());
+
+    const amcr::PrototypeMemory again = load();
+    EXPECT_EQ(again.cacheCounts().read, 3u) << "the file was not replaced by a sound one";
+    EXPECT_EQ(again.cacheCounts().refused, 0u);
+  }
+
+  amcr::PrototypeMemory freshBuild() const
+  {
+    amcr::Params no_cache = params_;
+    no_cache.table_cache_dir = "none";
+    return amcr::PrototypeMemory::loadDirectory(images_, no_cache);
+  }
+
+  static void expectSameTables(const amcr::PrototypeMemory& a, const amcr::PrototypeMemory& b)
+  {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
+      EXPECT_EQ(a[i].label(), b[i].label());
+      EXPECT_TRUE(a[i].toBytes() == b[i].toBytes()) << a[i].label() << " differs";
+    }
+  }
+
+  amcr_test::TempDir root_;
+  std::string images_, cache_;
+  amcr::Params params_;
+};
+
+TEST_F(TableCacheTest, SecondLoadReadsTheTablesBackByteForByte)
+{
+  Warnings warnings;
+  const amcr::PrototypeMemory first = load(&warnings);
+  EXPECT_EQ(first.cacheCounts().built, 3u);
+  EXPECT_EQ(first.cacheCounts().written, 3u);
+  EXPECT_EQ(first.cacheCounts().read, 0u);
+  EXPECT_TRUE(warnings.lines.empty()) << warnings.all();
+
+  const amcr::PrototypeMemory second = load(&warnings);
+  EXPECT_EQ(second.cacheCounts().read, 3u);
+  EXPECT_EQ(second.cacheCounts().built, 0u);
+  EXPECT_EQ(second.cacheCounts().written, 0u);
+  EXPECT_TRUE(warnings.lines.empty()) << warnings.all();
+  expectSameTables(second, freshBuild());
+  expectSameTables(first, second);
+  // What the filter reads, beyond the bytes: the same lookups.
+  EXPECT_EQ(second[0].distance(40, 40, 7), first[0].distance(40, 40, 7));
+  EXPECT_EQ(second[0].originalSize(), first[0].originalSize());
+}
+
+TEST_F(TableCacheTest, OneFilePerImageAndNoTemporaryFileLeft)
+{
+  load();
+  load();
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(cache_))
+    names.push_back(entry.path().filename().string());
+  ASSERT_EQ(names.size(), 3u);
+  for (const std::string& name : names)
+    EXPECT_EQ(fs::path(name).extension(), ".table") << name;
+}
+
+TEST_F(TableCacheTest, TwoLoadsAtOnceLeaveSoundFiles)
+{
+  // Each writer renames a whole file of its own over the name: whichever
+  // comes last, the file is whole.
+  std::vector<std::thread> loads;
+  std::vector<std::vector<std::string>> warnings(4);
+  for (std::size_t k = 0; k < warnings.size(); ++k)
+    loads.emplace_back([this, &warnings, k] {
+      amcr::PrototypeMemory::loadDirectory(images_, params_,
+                                           [&warnings, k](const std::string& w) { warnings[k].push_back(w); });
+    });
+  for (std::thread& t : loads)
+    t.join();
+  for (const auto& lines : warnings)
+    EXPECT_TRUE(lines.empty()) << lines.front();
+  Warnings after;
+  const amcr::PrototypeMemory memory = load(&after);
+  EXPECT_EQ(memory.cacheCounts().read, 3u);
+  EXPECT_TRUE(after.lines.empty()) << after.all();
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(cache_))
+    files += entry.path().extension() == ".table" ? 1 : 100;  // a temporary file counts 100
+  EXPECT_EQ(files, 3u);
+}
+
+TEST_F(TableCacheTest, TruncatedFileIsRefusedAndRebuilt)
+{
+  expectRefusedAndRebuilt([](std::vector<char>& b) { b.resize(b.size() / 2); }, "truncated");
+}
+
+TEST_F(TableCacheTest, FileShorterThanItsHeaderIsRefusedAndRebuilt)
+{
+  expectRefusedAndRebuilt([](std::vector<char>& b) { b.resize(17); }, "truncated");
+}
+
+TEST_F(TableCacheTest, OnePayloadByteFlippedIsRefusedAndRebuilt)
+{
+  expectRefusedAndRebuilt([](std::vector<char>& b) { b[b.size() / 2] ^= 0x10; }, "checksum");
+}
+
+TEST_F(TableCacheTest, GarbageIsRefusedAndRebuilt)
+{
+  expectRefusedAndRebuilt(
+      [](std::vector<char>& b) {
+        for (std::size_t i = 0; i < b.size(); ++i)
+          b[i] = static_cast<char>((i * 131 + 7) & 0xFF);
+      },
+      "wrong magic");
+}
+
+TEST_F(TableCacheTest, OtherFormatVersionIsRefusedAndRebuilt)
+{
+  expectRefusedAndRebuilt([](std::vector<char>& b) { b[8] = static_cast<char>(b[8] + 1); }, "format version");
+}
+
+TEST_F(TableCacheTest, FileForOtherParametersIsRefusedAsStaleAndRebuilt)
+{
+  // The file name depends on the image only: after a change of
+  // prototype_size the same file is found, and its key tells it is stale.
+  load();
+  params_.prototype_size = 48;
+  Warnings warnings;
+  const amcr::PrototypeMemory memory = load(&warnings);
+  EXPECT_EQ(memory.cacheCounts().refused, 3u);
+  EXPECT_EQ(memory.cacheCounts().built, 3u);
+  EXPECT_TRUE(warnings.mention(cacheFile("arrow"), "stale")) << warnings.all();
+  expectSameTables(memory, freshBuild());
+  EXPECT_EQ(load().cacheCounts().read, 3u);
+}
+
+TEST_F(TableCacheTest, KeyOfAnotherImageIsRefusedAsStale)
+{
+  // A file copied under another image's name: its key is not this image's.
+  load();
+  const std::string arrow = cacheFile("arrow"), star = cacheFile("star");
+  writeAll(arrow, readAll(star));
+  Warnings warnings;
+  const amcr::PrototypeMemory memory = load(&warnings);
+  EXPECT_EQ(memory.cacheCounts().refused, 1u);
+  EXPECT_TRUE(warnings.mention(arrow, "stale")) << warnings.all();
+  expectSameTables(memory, freshBuild());
+}
+
+TEST_F(TableCacheTest, CacheThatCannotBeCreatedIsAWarningAndTheMemoryWorks)
+{
+  std::ofstream(root_.file("a_file")) << "not a directory";
+  params_.table_cache_dir = root_.file("a_file") + "/tables";
+  Warnings warnings;
+  const amcr::PrototypeMemory memory = load(&warnings);
+  EXPECT_EQ(memory.size(), 3u);
+  EXPECT_EQ(memory.cacheCounts().built, 3u);
+  EXPECT_EQ(memory.cacheCounts().written, 0u);
+  EXPECT_TRUE(warnings.mention(params_.table_cache_dir, "cannot be used")) << warnings.all();
+  EXPECT_EQ(warnings.lines.size(), 1u) << "one warning, not one per table:" << warnings.all();
+  expectSameTables(memory, freshBuild());
+}
+
+TEST_F(TableCacheTest, ReadOnlyCacheIsAWarningAndStillRead)
+{
+  if (::geteuid() == 0)
+    GTEST_SKIP() << "root writes to a read-only directory";
+  load();
+  fs::permissions(cache_, fs::perms::owner_read | fs::perms::owner_exec);
+  Warnings warnings;
+  const amcr::PrototypeMemory memory = load(&warnings);
+  fs::permissions(cache_, fs::perms::owner_all);
+  EXPECT_EQ(memory.cacheCounts().read, 3u);
+  EXPECT_TRUE(warnings.mention(cache_, "cannot be written to")) << warnings.all();
+  EXPECT_EQ(warnings.lines.size(), 1u) << warnings.all();
+}
+
+TEST_F(TableCacheTest, NoneTurnsTheCacheOff)
+{
+  params_.table_cache_dir = "none";
+  EXPECT_EQ(load().cacheCounts().written, 0u);
+  EXPECT_FALSE(fs::exists(cache_));
+}
+
+TEST_F(TableCacheTest, ParallelBuildGivesTheMemoryAndIndexOfOneThread)
+{
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  const amcr::PrototypeMemory one = freshBuild();
+  const amcr::ProposalIndex one_index(one, 3);
+  cv::setNumThreads(threads);
+  const amcr::PrototypeMemory many = freshBuild();
+  const amcr::ProposalIndex many_index(many, 3);
+  expectSameTables(one, many);
+  ASSERT_EQ(one_index.size(), many_index.size());
+  const amcr::RaySignature rays = amcr_test::tableRays(one[1], one[1].width() / 2, one[1].height() / 2, 5, 1.f);
+  const auto a = one_index.queryExact(rays, 20), b = many_index.queryExact(rays, 20);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    EXPECT_EQ(a[i].prototype, b[i].prototype);
+    EXPECT_EQ(a[i].x, b[i].x);
+    EXPECT_EQ(a[i].y, b[i].y);
+    EXPECT_EQ(a[i].bin, b[i].bin);
+  }
+}
+
+// Behind the checksum, the payload is checked on its own: bytes that pass
+// a checksum by chance, or were written by a faulty build, give an error,
+// never a read past the end.
+TEST(PrototypeBytes, RoundTripAndEveryDamageIsAMemoryError)
+{
+  const amcr::Prototype prototype("star", amcr_test::drawPrototype(ShapeId::kStar), 48, 40.0, 1.0);
+  const std::vector<std::uint8_t> bytes = prototype.toBytes();
+  const auto back = amcr::Prototype::fromBytes("star", bytes.data(), bytes.size());
+  EXPECT_TRUE(back->toBytes() == bytes);
+  EXPECT_EQ(back->label(), "star");
+  EXPECT_EQ(back->interior().size(), prototype.interior().size());
+  EXPECT_EQ(back->outline().size(), prototype.outline().size());
+
+  for (std::size_t cut = 0; cut < bytes.size(); cut += 1 + bytes.size() / 300)
+    EXPECT_THROW(amcr::Prototype::fromBytes("star", bytes.data(), cut), amcr::MemoryError) << "cut at " << cut;
+  std::vector<std::uint8_t> longer = bytes;
+  longer.push_back(0);
+  EXPECT_THROW(amcr::Prototype::fromBytes("star", longer.data(), longer.size()), amcr::MemoryError);
+
+  // The fields that size what follows: width (byte 16), height (20), and
+  // the table's byte count right after the mask and the two affines.
+  const auto spoiled = [&](std::size_t at, std::int64_t value, std::size_t width) {
+    std::vector<std::uint8_t> b = bytes;
+    std::memcpy(b.data() + at, &value, width);
+    return b;
+  };
+  const std::size_t table_count_at = 24 + static_cast<std::size_t>(prototype.width() * prototype.height()) + 96;
+  for (const auto& b : {spoiled(16, 0, 4), spoiled(16, -5, 4), spoiled(20, 1 << 30, 4), spoiled(16, 4000, 4),
+                        spoiled(table_count_at, 12, 8), spoiled(table_count_at, -1, 8)})
+    EXPECT_THROW(amcr::Prototype::fromBytes("star", b.data(), b.size()), amcr::MemoryError);
+  const std::size_t interior_count_at = table_count_at + 8 + prototype.tableBytes();
+  const auto huge = spoiled(interior_count_at, std::int64_t(1) << 60, 8);
+  EXPECT_THROW(amcr::Prototype::fromBytes("star", huge.data(), huge.size()), amcr::MemoryError);
+  const auto outside = spoiled(interior_count_at + 8, 100000, 4);  // the first interior point's x
+  EXPECT_THROW(amcr::Prototype::fromBytes("star", outside.data(), outside.size()), amcr::MemoryError);
+}
+
+TEST(TableCacheKey, ChangesWithTheImageAndEveryTableParameterOnly)
+{
+  const amcr::Params base;
+  const std::uint64_t key = amcr::tableCacheKey(1, base);
+  EXPECT_NE(amcr::tableCacheKey(2, base), key);
+  amcr::Params p = base;
+  p.prototype_size = 96;
+  EXPECT_NE(amcr::tableCacheKey(1, p), key);
+  p = base;
+  p.edge_threshold = 41;
+  EXPECT_NE(amcr::tableCacheKey(1, p), key);
+  p = base;
+  p.blur_sigma = 1.5;
+  EXPECT_NE(amcr::tableCacheKey(1, p), key);
+  p = base;
+  p.num_v_particles = 7;  // not a table parameter
+  p.table_cache_dir = "/elsewhere";
+  EXPECT_EQ(amcr::tableCacheKey(1, p), key);
+}
+
+TEST(ContentHash, EverySingleByteChangeChangesTheHash)
+{
+  std::vector<unsigned char> bytes(77);
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+    bytes[i] = static_cast<unsigned char>(i * 37);
+  const std::uint64_t hash = amcr::hashBytes(bytes.data(), bytes.size());
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+  {
+    bytes[i] ^= 1;
+    EXPECT_NE(amcr::hashBytes(bytes.data(), bytes.size()), hash) << "byte " << i;
+    bytes[i] ^= 1;
+  }
+  EXPECT_NE(amcr::hashBytes(bytes.data(), bytes.size() - 1), hash);
+}
+
+/// Sets an environment variable for one scope, then restores it.
+class ScopedVariable
+{
+public:
+  ScopedVariable(const char* name, const char* value) : name_(name)
+  {
+    const char* old = std::getenv(name);
+    had_ = old != nullptr;
+    old_ = old ? old : "";
+    if (value)
+      ::setenv(name, value, 1);
+    else
+      ::unsetenv(name);
+  }
+  ~ScopedVariable()
+  {
+    if (had_)
+      ::setenv(name_, old_.c_str(), 1);
+    else
+      ::unsetenv(name_);
+  }
+
+private:
+  const char* name_;
+  bool had_;
+  std::string old_;
+};
+
+TEST(TableCacheDirectory, DefaultFollowsRosHomeThenHome)
+{
+  ScopedVariable home("HOME", "/home/someone");
+  {
+    ScopedVariable ros_home("ROS_HOME", "/var/ros");
+    EXPECT_EQ(amcr::tableCacheDirectory(""), "/var/ros/amcr/tables");
+  }
+  {
+    ScopedVariable ros_home("ROS_HOME", nullptr);
+    EXPECT_EQ(amcr::tableCacheDirectory(""), "/home/someone/.ros/amcr/tables");
+    EXPECT_EQ(amcr::tableCacheDirectory("~/tables"), "/home/someone/tables");
+    EXPECT_EQ(amcr::tableCacheDirectory("/data/tables"), "/data/tables");
+    EXPECT_EQ(amcr::tableCacheDirectory("none"), "");
+    ScopedVariable no_home("HOME", nullptr);
+    std::string why;
+    EXPECT_EQ(amcr::tableCacheDirectory("", &why), "");
+    EXPECT_NE(why.find("ROS_HOME"), std::string::npos) << why;
+  }
+}
+
+TEST(TableCacheDirectory, ReadFromTheParameterFile)
+{
+  amcr_test::TempDir dir;
+  std::ofstream(dir.file("p.yaml")) << "%YAML:1.0\n---\ntable_cache_dir: \"none\"\n";
+  EXPECT_EQ(amcr::loadParams(dir.file("p.yaml")).table_cache_dir, "none");
+  std::ofstream(dir.file("q.yaml")) << "%YAML:1.0\n---\ntable_cache_dir: \"tables\"\n";
+  EXPECT_THROW(amcr::loadParams(dir.file("q.yaml")), amcr::ParameterError);
+  EXPECT_EQ(amcr::loadParams(AMCR_SOURCE_DIR "/config/amcr.yaml").table_cache_dir, "");
+}
+
+TEST(TableCacheDirectory, RelativePathIsAParameterError)
+{
+  amcr::Params p;
+  EXPECT_THROW(amcr::setParameter(p, "table_cache_dir", "tables"), amcr::ParameterError);
+  p.table_cache_dir = "cache/tables";
+  EXPECT_THROW(p.validate(), amcr::ParameterError);
+  amcr::setParameter(p, "table_cache_dir", "none");
+  EXPECT_EQ(p.table_cache_dir, "none");
+  EXPECT_NO_THROW(p.validate());
+}
+}  // namespace
