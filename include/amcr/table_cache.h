@@ -11,12 +11,14 @@
 // File layout (host byte order; the cache is local to a machine):
 //   magic "AMCRTBL\0" (8 bytes), format version (u32), header size (u32),
 //   key (u64), payload size (u64), payload checksum (u64),
-//   payload: Prototype::toBytes().
+//   payload: Prototype::toBytes() (or, for the proposal index, its k-d
+//   tree: index_cache.h).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "amcr/params.h"
 #include "amcr/prototype.h"
@@ -85,7 +87,26 @@ public:
   std::string write(const std::string& label, std::uint64_t image_hash, std::uint64_t key,
                     const Prototype& prototype) const;
 
+  /// The cache file layout for any payload (the proposal index's k-d tree
+  /// uses it too, index_cache.h): the payload of file `name` of the cache
+  /// directory when its header holds `key` and the checksum matches. Returns
+  /// why the file was refused; "" with an empty payload when there is no
+  /// file (or the cache is off). Safe to call from several threads.
+  std::string readPayload(const std::string& name, std::uint64_t key, std::vector<std::uint8_t>& payload) const;
+
+  /// Writes `payload` under `key` as file `name` (temporary name, then a
+  /// rename); returns why it could not ("" when written, or the cache is
+  /// not writable).
+  std::string writePayload(const std::string& name, std::uint64_t key, const std::vector<std::uint8_t>& payload) const;
+
+  /// A path in the cache directory, next to `name`, that no other thread or
+  /// process uses (for a file a library must write or read by name).
+  std::string temporaryPath(const std::string& name) const;
+
 private:
+  static std::string fileName(const std::string& label, std::uint64_t image_hash);
+  std::string filePath(const std::string& name) const;
+
   std::string directory_;
   bool readable_ = false;
   bool writable_ = false;

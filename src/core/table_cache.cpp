@@ -55,7 +55,7 @@ std::string readFile(const std::string& path, std::vector<std::uint8_t>& bytes)
   if (error)
     return error.message();
   if (size > static_cast<std::uintmax_t>(kMaxTableBytes))
-    return "the file has " + std::to_string(size) + " bytes, more than any table";
+    return "the file has " + std::to_string(size) + " bytes, more than any cache file holds";
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in)
@@ -162,43 +162,43 @@ TableCache::TableCache(const std::string& directory) : directory_(directory)
   fs::remove(probe, error);
 }
 
+std::string TableCache::fileName(const std::string& label, std::uint64_t image_hash)
+{
+  return label + "-" + hex(image_hash) + ".table";
+}
+
 std::string TableCache::path(const std::string& label, std::uint64_t image_hash) const
 {
-  return (fs::path(directory_) / (label + "-" + hex(image_hash) + ".table")).string();
+  return filePath(fileName(label, image_hash));
 }
 
-TableCache::Found TableCache::read(const std::string& label, std::uint64_t image_hash, std::uint64_t key) const
+std::string TableCache::filePath(const std::string& name) const { return (fs::path(directory_) / name).string(); }
+
+std::string TableCache::temporaryPath(const std::string& name) const { return temporaryName(filePath(name)); }
+
+std::string TableCache::readPayload(const std::string& name, std::uint64_t key, std::vector<std::uint8_t>& payload) const
 {
-  Found found;
+  payload.clear();
   if (!readable_)
-    return found;
-  const std::string file = path(label, image_hash);
+    return "";
+  const std::string file = filePath(name);
   std::error_code error;
   if (!fs::exists(file, error))
-    return found;
+    return "";
   std::vector<std::uint8_t> bytes;
-  found.problem = readFile(file, bytes);
-  if (found.problem.empty())
-    found.problem = checkHeader(bytes, key);
-  if (!found.problem.empty())
-    return found;
-  try
-  {
-    found.prototype = Prototype::fromBytes(label, bytes.data() + sizeof(Header), bytes.size() - sizeof(Header));
-  }
-  catch (const MemoryError& e)
-  {
-    found.problem = std::string("inconsistent payload: ") + e.what();
-  }
-  return found;
+  std::string problem = readFile(file, bytes);
+  if (problem.empty())
+    problem = checkHeader(bytes, key);
+  if (problem.empty())
+    payload.assign(bytes.begin() + sizeof(Header), bytes.end());
+  return problem;
 }
 
-std::string TableCache::write(const std::string& label, std::uint64_t image_hash, std::uint64_t key,
-                              const Prototype& prototype) const
+std::string TableCache::writePayload(const std::string& name, std::uint64_t key,
+                                     const std::vector<std::uint8_t>& payload) const
 {
   if (!writable_)
     return "";
-  const std::vector<std::uint8_t> payload = prototype.toBytes();
   Header h;
   std::memcpy(h.magic, kMagic, sizeof kMagic);
   h.version = kTableFormatVersion;
@@ -207,7 +207,7 @@ std::string TableCache::write(const std::string& label, std::uint64_t image_hash
   h.payload_bytes = payload.size();
   h.checksum = hashBytes(payload.data(), payload.size());
 
-  const std::string file = path(label, image_hash);
+  const std::string file = filePath(name);
   const std::string temporary = temporaryName(file);
   errno = 0;
   std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
@@ -232,5 +232,31 @@ std::string TableCache::write(const std::string& label, std::uint64_t image_hash
     return "cannot rename '" + temporary + "' to '" + file + "': " + error.message();
   }
   return "";
+}
+
+TableCache::Found TableCache::read(const std::string& label, std::uint64_t image_hash, std::uint64_t key) const
+{
+  Found found;
+  std::vector<std::uint8_t> payload;
+  found.problem = readPayload(fileName(label, image_hash), key, payload);
+  if (!found.problem.empty() || payload.empty())
+    return found;
+  try
+  {
+    found.prototype = Prototype::fromBytes(label, payload.data(), payload.size());
+  }
+  catch (const MemoryError& e)
+  {
+    found.problem = std::string("inconsistent payload: ") + e.what();
+  }
+  return found;
+}
+
+std::string TableCache::write(const std::string& label, std::uint64_t image_hash, std::uint64_t key,
+                              const Prototype& prototype) const
+{
+  if (!writable_)
+    return "";
+  return writePayload(fileName(label, image_hash), key, prototype.toBytes());
 }
 }  // namespace amcr
