@@ -33,6 +33,8 @@ class Index;
 
 namespace amcr
 {
+class TableCache;
+
 /// The descriptor of 8 feature rays (see above).
 using RayDescriptor = std::array<float, kFeatureRays>;
 
@@ -67,9 +69,12 @@ public:
   /// pixel of it has a ray longer than the table holds: a large, round shape
   /// at a large prototype_size) is left out with a warning naming it; the
   /// uniform proposal still seeds it. Throws ParameterError for a stride
-  /// below 1, MemoryError when no entry is left.
+  /// below 1, MemoryError when no entry is left. With a `cache`, the k-d
+  /// tree is read from it when it holds the tree of these very entries, and
+  /// stored in it after a build (index_cache.h); a refused file or a failed
+  /// write is a warning.
   ProposalIndex(const PrototypeMemory& memory, int stride, const std::vector<bool>& active = {},
-                const WarningSink& warn = WarningSink());
+                const WarningSink& warn = WarningSink(), const TableCache* cache = nullptr);
   ~ProposalIndex();
   ProposalIndex(const ProposalIndex&) = delete;
   ProposalIndex& operator=(const ProposalIndex&) = delete;
@@ -82,6 +87,8 @@ public:
   std::vector<ProposalCandidate> queryExact(const RaySignature& rays, int k) const;
 
   std::size_t size() const { return entries_.size(); }
+  /// Whether the k-d tree was read from the cache (not built).
+  bool treeFromCache() const { return tree_from_cache_; }
   /// Labels of the prototypes left out of the index.
   const std::vector<std::string>& leftOut() const { return left_out_; }
 
@@ -109,5 +116,6 @@ private:
   cv::Mat descriptors_;  // one row per entry, CV_32F
   std::unique_ptr<cv::flann::Index> index_;
   std::vector<std::string> left_out_;
+  bool tree_from_cache_ = false;
 };
 }  // namespace amcr

@@ -17,6 +17,7 @@
 #include "amcr/parallel_for.h"
 #include "amcr/ray_directions.h"
 #include "amcr/resource_bounds.h"
+#include "amcr/table_cache.h"
 
 namespace amcr
 {
@@ -64,8 +65,12 @@ std::shared_ptr<const ProposalIndex> ParticleFilter::buildIndex(const PrototypeM
 {
   if (params_.index_share <= 0.0)
     return nullptr;
-  return std::make_shared<const ProposalIndex>(memory, params_.index_stride, prior.activeMask(),
-                                               [&warnings](const std::string& line) { warnings.push_back(line); });
+  // The k-d tree is cached beside the tables (table_cache_dir); the memory's
+  // load has already reported a cache that cannot be used.
+  const TableCache cache(tableCacheDirectory(params_.table_cache_dir));
+  return std::make_shared<const ProposalIndex>(
+      memory, params_.index_stride, prior.activeMask(),
+      [&warnings](const std::string& line) { warnings.push_back(line); }, cache.readable() ? &cache : nullptr);
 }
 
 void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)

@@ -7,6 +7,8 @@
 #include <opencv2/flann.hpp>
 
 #include "amcr/errors.h"
+#include "amcr/index_cache.h"
+#include "amcr/table_cache.h"
 
 namespace amcr
 {
@@ -67,7 +69,7 @@ bool describeRays(const RaySignature& rays, RayDescriptor& out)
 }
 
 ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const std::vector<bool>& active,
-                             const WarningSink& warn)
+                             const WarningSink& warn, const TableCache* cache)
 {
   if (stride < 1)
     throw ParameterError("index_stride must be at least 1 table px, got " + std::to_string(stride));
@@ -106,11 +108,29 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
   descriptors_.create(static_cast<int>(rows.size()), kFeatureRays, CV_32F);
   for (int r = 0; r < descriptors_.rows; ++r)
     std::copy(rows[r].begin(), rows[r].end(), descriptors_.ptr<float>(r));
+  const std::uint64_t key = cache ? indexCacheKey(descriptors_, kLeafSize) : 0;
+  if (cache)
+  {
+    std::string problem;
+    index_ = readIndexTree(*cache, key, descriptors_, problem);
+    if (!problem.empty() && warn)
+      warn("the proposal index's cached tree '" + indexCacheName(key) + "' was refused (" + problem +
+           "): it is built again");
+    tree_from_cache_ = index_ != nullptr;
+  }
+  if (index_)
+    return;
   cv::flann::IndexParams tree;
   tree.setAlgorithm(cvflann::FLANN_INDEX_KDTREE_SINGLE);
   tree.setInt("leaf_max_size", kLeafSize);
   tree.setBool("reorder", true);
   index_ = std::make_unique<cv::flann::Index>(descriptors_, tree);
+  if (cache)
+  {
+    const std::string problem = writeIndexTree(*cache, key, *index_);
+    if (!problem.empty() && warn)
+      warn("the proposal index's tree is not cached: " + problem);
+  }
 }
 
 ProposalIndex::~ProposalIndex() = default;
