@@ -56,8 +56,18 @@ public:
   /// heading, with affine_refits re-estimates of A (default none: each one
   /// lets every hypothesis fit itself to what it sees, and the likelihood
   /// tells them apart less; README, "Oblique views").
+  /// With the default ray_correspondence the M-particles go through in
+  /// blocks (observation_model_lanes.cpp), with the same output as
+  /// measureReference: bitwise on x86-64 with GCC, within float rounding
+  /// elsewhere (test_update_loop.cpp states the tolerance).
   void measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
                std::size_t end) const;
+
+  /// The same update one M-particle at a time: the plain reference that the
+  /// block path of measure is tested against (test_update_loop.cpp), and the
+  /// path of ray_correspondence affine.
+  void measureReference(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
+                        std::size_t end) const;
 
   /// log p(z_v | m) of eq. 6 over the 8 feature rays, for an M-particle at
   /// table pixel `at` and direction bin `bin` (raw: its table distances)
@@ -73,6 +83,11 @@ public:
                                const RelationalAffine& affine) const;
 
 private:
+  /// measure for the default ray correspondence: M-particles [begin, end),
+  /// at most kUpdateLanes of them (observation_model_lanes.cpp).
+  void measureBlock(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
+                    std::size_t end) const;
+
   /// Eq. 6 over v's feature rays; `table_end(k, x, y)` gives where table ray
   /// k ends (false: no edge).
   template <typename TableEnd>

@@ -53,8 +53,8 @@ double ObservationModel::logRay(double dw) const
   return std::log(std::max(outlier_density_ + (1.0 - p_outlier_) * gauss, 1e-300));
 }
 
-void ObservationModel::measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
-                               std::size_t end) const
+void ObservationModel::measureReference(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m,
+                                        std::size_t begin, std::size_t end) const
 {
   const float all_invalid = kFeatureRays * static_cast<float>(log_invalid_);
   for (std::size_t i = begin; i < end; ++i)

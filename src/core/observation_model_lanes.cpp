@@ -1,0 +1,296 @@
+// ObservationModel::measure for the default ray correspondence (per-bin
+// lookups), in blocks of M-particles: a scalar pass gathers each one's table
+// pixel, triangle ends and feature-ray ends into structure-of-arrays lanes,
+// then plain float loops over the lanes (which the compiler vectorises) fit
+// the triangle affine (paper 4.1) and sum eq. 6. Every lane does the same
+// float operations in the same order as measureReference
+// (observation_model.cpp, relational_update.h, affine.cpp), so the output
+// is the same; a rejected triangle is masked, not branched around.
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "amcr/errors.h"
+#include "amcr/observation_model.h"
+#include "amcr/particles.h"
+#include "amcr/prototype_memory.h"
+#include "amcr/relational_update.h"
+
+namespace amcr
+{
+namespace
+{
+constexpr std::size_t kLanes = 32;  // M-particles per block
+
+/// The direction bins of the feature and triangle rays of every heading bin.
+struct HeadingRayBins
+{
+  std::uint8_t feature[kDirectionBins][kFeatureRays];
+  std::uint8_t triangle[kDirectionBins][kTriangleRays];
+  HeadingRayBins()
+  {
+    for (int b = 0; b < kDirectionBins; ++b)
+    {
+      for (int k = 0; k < kFeatureRays; ++k)
+        feature[b][k] = static_cast<std::uint8_t>((b + k * kFeatureBinStep) % kDirectionBins);
+      for (int t = 0; t < kTriangleRays; ++t)
+        triangle[b][t] = static_cast<std::uint8_t>((b + t * kTriangleBinStep) % kDirectionBins);
+    }
+  }
+};
+
+const HeadingRayBins& headingRayBins()
+{
+  static const HeadingRayBins bins;
+  return bins;
+}
+
+/// One block's M-particles as lanes: the table ends of their triangle rays
+/// and of the feature rays valid in v (index j of v's valid rays), and
+/// whether each met an edge.
+struct TableEndLanes
+{
+  float triangle_x[kTriangleRays][kLanes];
+  float triangle_y[kTriangleRays][kLanes];
+  std::int32_t triangle_found[kLanes];
+  float ray_x[kFeatureRays][kLanes];
+  float ray_y[kFeatureRays][kLanes];
+  std::int32_t ray_found[kFeatureRays][kLanes];
+};
+
+/// The relational affine of each lane: B (table -> image), A = B^-1, and
+/// whether the fit is accepted.
+struct AffineLanes
+{
+  float b[6][kLanes];
+  float a[6][kLanes];
+  std::int32_t accepted[kLanes];
+};
+
+/// angleToBin (ray_directions.h) without the call to lround: the same
+/// rounding half away from zero, from the exact fraction x - trunc(x).
+inline int headingBin(double angle)
+{
+  const double x = angle / kBinAngle;
+  if (!(std::abs(x) < 1e15))  // far out or not a number: the definition itself
+    return angleToBin(angle);
+  std::int64_t rounded = static_cast<std::int64_t>(x);
+  const double fraction = x - static_cast<double>(rounded);
+  rounded += fraction >= 0.5 ? 1 : (fraction <= -0.5 ? -1 : 0);
+  const int bin = static_cast<int>(rounded % kDirectionBins);
+  return bin < 0 ? bin + kDirectionBins : bin;
+}
+
+/// Asks for the cache lines of a pixel's table distances ahead of their use.
+inline void prefetchDistances(const std::uint8_t* raw)
+{
+#if defined(__GNUC__)
+  __builtin_prefetch(raw);
+  __builtin_prefetch(raw + kDirectionBins - 1);
+#else
+  (void)raw;
+#endif
+}
+
+/// tableRayEnd (relational_update.h) without the branch: the end and whether the ray met an edge.
+inline std::int32_t tableEnd(const std::uint8_t* raw, const cv::Point& at, int bin, float& x, float& y)
+{
+  const BinDirections& dir = binDirections();
+  x = at.x + raw[bin] * Prototype::kDistanceUnit * dir.cos[bin];
+  y = at.y + raw[bin] * Prototype::kDistanceUnit * dir.sin[bin];
+  return raw[bin] != Prototype::kNoEdge;
+}
+
+/// Paper 4.1 in lanes: fitRelationalAffine (affineFromTriangles,
+/// affineScaleAccepted, invertAffine of affine.cpp) on every lane, the
+/// V-particle's triangle the destination of each.
+void fitAffineLanes(const TableEndLanes& ends, const VRayEnds& v, float min_area, float max_scale, std::size_t lanes,
+                    AffineLanes& out)
+{
+  const float d00 = v.triangle_x[1] - v.triangle_x[0], d01 = v.triangle_x[2] - v.triangle_x[0];
+  const float d10 = v.triangle_y[1] - v.triangle_y[0], d11 = v.triangle_y[2] - v.triangle_y[0];
+  const float dst_area2 = d00 * d11 - d01 * d10;
+  const float area_limit = std::max(2.f * min_area, 1e-6f);
+  const std::int32_t dst_accepted = std::abs(dst_area2) >= area_limit;
+  const float min_scale = 1.f / max_scale;
+  const float dst_x0 = v.triangle_x[0], dst_y0 = v.triangle_y[0];
+  for (std::size_t l = 0; l < lanes; ++l)
+  {
+    const float sx0 = ends.triangle_x[0][l], sy0 = ends.triangle_y[0][l];
+    const float s00 = ends.triangle_x[1][l] - sx0, s01 = ends.triangle_x[2][l] - sx0;
+    const float s10 = ends.triangle_y[1][l] - sy0, s11 = ends.triangle_y[2][l] - sy0;
+    const float src_area2 = s00 * s11 - s01 * s10;
+    const std::int32_t area_accepted = std::abs(src_area2) >= area_limit;
+    const float inv = 1.f / src_area2;
+    const float i00 = s11 * inv, i01 = -s01 * inv, i10 = -s10 * inv, i11 = s00 * inv;
+    const float b0 = d00 * i00 + d01 * i10;
+    const float b1 = d00 * i01 + d01 * i11;
+    const float b3 = d10 * i00 + d11 * i10;
+    const float b4 = d10 * i01 + d11 * i11;
+    const float b2 = dst_x0 - b0 * sx0 - b1 * sy0;
+    const float b5 = dst_y0 - b3 * sx0 - b4 * sy0;
+    // The singular values s1 >= s2 of B's linear part, closed form.
+    const float det = b0 * b4 - b1 * b3;
+    const float frob = b0 * b0 + b1 * b1 + b3 * b3 + b4 * b4;
+    const float disc_squared = frob * frob - 4.f * det * det;
+    const float disc = std::sqrt(0.f < disc_squared ? disc_squared : 0.f);
+    const float s1 = std::sqrt(0.5f * (frob + disc));
+    const float s2_squared = 0.5f * (frob - disc);
+    const float s2 = std::sqrt(0.f < s2_squared ? s2_squared : 0.f);
+    const std::int32_t scale_accepted = !(det <= 0.f || s1 > max_scale || s2 < min_scale);
+    const std::int32_t invertible = det != 0.f && std::abs(det) <= FLT_MAX;
+    const float inv_det = 1.f / det;
+    const float a0 = b4 * inv_det, a1 = -b1 * inv_det, a3 = -b3 * inv_det, a4 = b0 * inv_det;
+    out.b[0][l] = b0;
+    out.b[1][l] = b1;
+    out.b[2][l] = b2;
+    out.b[3][l] = b3;
+    out.b[4][l] = b4;
+    out.b[5][l] = b5;
+    out.a[0][l] = a0;
+    out.a[1][l] = a1;
+    out.a[2][l] = -(a0 * b2 + a1 * b5);
+    out.a[3][l] = a3;
+    out.a[4][l] = a4;
+    out.a[5][l] = -(a3 * b2 + a4 * b5);
+    out.accepted[l] = ends.triangle_found[l] & dst_accepted & area_accepted & scale_accepted & invertible;
+  }
+}
+}  // namespace
+
+void ObservationModel::measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
+                               std::size_t end) const
+{
+  if (ray_correspondence_ == RayCorrespondence::kAffine)
+  {
+    measureReference(memory, v, m, begin, end);
+    return;
+  }
+  for (std::size_t block = begin; block < end; block += kLanes)
+    measureBlock(memory, v, m, block, std::min(end, block + kLanes));
+}
+
+void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m,
+                                    std::size_t begin, std::size_t end) const
+{
+  const float log_invalid = static_cast<float>(log_invalid_);
+  const float all_invalid = kFeatureRays * log_invalid;
+  // The feature rays eq. 6 compares: those valid in v.
+  int valid_rays[kFeatureRays];
+  int valid_count = 0;
+  for (int k = 0; k < kFeatureRays; ++k)
+    if (v.feature_valid[k])
+      valid_rays[valid_count++] = k;
+
+  // Gather: each M-particle's table pixel and ray ends. An M-particle outside
+  // its table ends the block; those before it are updated, then it throws.
+  // The table rows are asked for first, all of the block's at once: the
+  // lookups wait on memory, not on each other.
+  const std::uint8_t* raw[kLanes];
+  cv::Point at[kLanes];
+  std::size_t lanes = 0;
+  const Prototype* outside = nullptr;
+  for (; begin + lanes < end; ++lanes)
+  {
+    const std::size_t i = begin + lanes;
+    const Prototype& p = memory[m.prototype[i]];
+    at[lanes] = nearestTablePixel(m.x[i], m.y[i]);
+    if (!insideTable(p, at[lanes]))
+    {
+      outside = &p;
+      break;
+    }
+    raw[lanes] = p.rawDistances(at[lanes].x, at[lanes].y);
+    prefetchDistances(raw[lanes]);
+  }
+  const HeadingRayBins& bins = headingRayBins();
+  TableEndLanes ends;
+  for (std::size_t l = 0; l < lanes && v.triangle_valid; ++l)
+  {
+    const int bin = headingBin(m.theta[begin + l]);
+    std::int32_t found = 1;
+    for (int t = 0; t < kTriangleRays; ++t)
+      found &= tableEnd(raw[l], at[l], bins.triangle[bin][t], ends.triangle_x[t][l], ends.triangle_y[t][l]);
+    ends.triangle_found[l] = found;
+    for (int j = 0; j < valid_count; ++j)
+      ends.ray_found[j][l] = tableEnd(raw[l], at[l], bins.feature[bin][valid_rays[j]], ends.ray_x[j][l], ends.ray_y[j][l]);
+  }
+
+  if (!v.triangle_valid)
+  {
+    for (std::size_t i = begin; i < begin + lanes; ++i)
+    {
+      m.affine_valid[i] = kNoAffine;
+      m.log_likelihood[i] = all_invalid;
+    }
+  }
+  else
+  {
+    AffineLanes affine;
+    fitAffineLanes(ends, v, min_triangle_area_, max_affine_scale_, lanes, affine);
+
+    // Paper eq. 6: the sum over v's valid feature rays of log p(dw_j) (eq. 5,
+    // tabulated as in logRayFromSquared) or log p_invalid, in ray order.
+    float log_l[kLanes];
+    const float invalid_in_v = v.invalid_feature_rays * log_invalid;
+    for (std::size_t l = 0; l < lanes; ++l)
+      log_l[l] = invalid_in_v;
+    const float last_index = static_cast<float>(table_.size() - 1);
+    const float* table = table_.data();
+    for (int j = 0; j < valid_count; ++j)
+    {
+      const int k = valid_rays[j];
+      const float image_x = v.feature_x[k], image_y = v.feature_y[k];
+      float index[kLanes];
+      std::int32_t cell[kLanes];
+      for (std::size_t l = 0; l < lanes; ++l)
+      {
+        const float table_x = ends.ray_x[j][l], table_y = ends.ray_y[j][l];
+        float dx, dy;
+        if (deviation_space_ == DeviationSpace::kImage)
+        {
+          dx = affine.b[0][l] * table_x + affine.b[1][l] * table_y + affine.b[2][l] - image_x;
+          dy = affine.b[3][l] * table_x + affine.b[4][l] * table_y + affine.b[5][l] - image_y;
+        }
+        else
+        {
+          dx = affine.a[0][l] * image_x + affine.a[1][l] * image_y + affine.a[2][l] - table_x;
+          dy = affine.a[3][l] * image_x + affine.a[4][l] * image_y + affine.a[5][l] - table_y;
+        }
+        const float at_index = (dx * dx + dy * dy) * inv_step_;
+        // Beyond the table (or not a number): log_far_, cell 0 unused.
+        index[l] = at_index < last_index ? at_index : -1.f;
+        cell[l] = static_cast<std::int32_t>(index[l] < 0.f ? 0.f : index[l]);
+      }
+      float start[kLanes], slope[kLanes];
+      for (std::size_t l = 0; l < lanes; ++l)  // the table lookups: a gather, scalar
+      {
+        start[l] = table[cell[l]];
+        slope[l] = table[cell[l] + 1] - table[cell[l]];
+      }
+      for (std::size_t l = 0; l < lanes; ++l)
+      {
+        const float fraction = index[l] - static_cast<float>(cell[l]);
+        const float log_ray = index[l] < 0.f ? log_far_ : start[l] + fraction * slope[l];
+        log_l[l] += ends.ray_found[j][l] ? log_ray : log_invalid;
+      }
+    }
+
+    for (std::size_t l = 0; l < lanes; ++l)
+    {
+      const std::size_t i = begin + l;
+      const bool accepted = affine.accepted[l] != 0;
+      m.affine_valid[i] = accepted ? kFittedAffine : kNoAffine;
+      m.log_likelihood[i] = accepted ? log_l[l] : all_invalid;
+      if (accepted)
+        for (int e = 0; e < 6; ++e)
+          m.affine[e][i] = affine.a[e][l];
+    }
+  }
+  if (outside)
+    throw InputError("ObservationModel::measure: M-particle " + std::to_string(begin + lanes) +
+                     " lies outside the table of '" + outside->label() + "'");
+}
+}  // namespace amcr
