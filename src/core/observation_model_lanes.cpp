@@ -24,15 +24,23 @@ namespace
 {
 constexpr std::size_t kLanes = 32;  // M-particles per block
 
-/// The direction bins of the feature and triangle rays of every heading bin.
+/// The direction bins of the feature and triangle rays of every heading
+/// bin, and half of each bin's direction (the step of one raw distance unit,
+/// Prototype::kDistanceUnit: halving is exact, so raw * half_cos is bitwise
+/// raw * kDistanceUnit * cos).
 struct HeadingRayBins
 {
   std::uint8_t feature[kDirectionBins][kFeatureRays];
   std::uint8_t triangle[kDirectionBins][kTriangleRays];
+  float half_cos[kDirectionBins];
+  float half_sin[kDirectionBins];
   HeadingRayBins()
   {
+    static_assert(Prototype::kDistanceUnit == 0.5f, "half_cos and half_sin are the steps of 0.5 px");
     for (int b = 0; b < kDirectionBins; ++b)
     {
+      half_cos[b] = 0.5f * binDirections().cos[b];
+      half_sin[b] = 0.5f * binDirections().sin[b];
       for (int k = 0; k < kFeatureRays; ++k)
         feature[b][k] = static_cast<std::uint8_t>((b + k * kFeatureBinStep) % kDirectionBins);
       for (int t = 0; t < kTriangleRays; ++t)
@@ -69,17 +77,30 @@ struct AffineLanes
   std::int32_t accepted[kLanes];
 };
 
-/// angleToBin (ray_directions.h) without the call to lround: the same
-/// rounding half away from zero, from the exact fraction x - trunc(x).
-inline int headingBin(double angle)
+/// angleToBin (ray_directions.h) of `lanes` headings without the call to
+/// lround: the same rounding half away from zero, from the exact fraction
+/// x - trunc(x), in lanes. A heading beyond 1e9 bins (or not a number) gets
+/// kNoRoundedBin, for the definition itself.
+constexpr std::int32_t kNoRoundedBin = INT32_MIN;
+void roundedBins(const float* theta, std::size_t lanes, std::int32_t rounded[kLanes])
 {
-  const double x = angle / kBinAngle;
-  if (!(std::abs(x) < 1e15))  // far out or not a number: the definition itself
-    return angleToBin(angle);
-  std::int64_t rounded = static_cast<std::int64_t>(x);
-  const double fraction = x - static_cast<double>(rounded);
-  rounded += fraction >= 0.5 ? 1 : (fraction <= -0.5 ? -1 : 0);
-  const int bin = static_cast<int>(rounded % kDirectionBins);
+  for (std::size_t l = 0; l < lanes; ++l)
+  {
+    const double x = static_cast<double>(theta[l]) / kBinAngle;
+    const bool in_range = std::abs(x) < 1e9;
+    const double x_in_range = in_range ? x : 0.0;
+    const std::int32_t truncated = static_cast<std::int32_t>(x_in_range);
+    const double fraction = x_in_range - static_cast<double>(truncated);
+    const std::int32_t r = truncated + (fraction >= 0.5 ? 1 : 0) - (fraction <= -0.5 ? 1 : 0);
+    rounded[l] = in_range ? r : kNoRoundedBin;
+  }
+}
+
+inline int headingBin(std::int32_t rounded, float theta)
+{
+  if (rounded == kNoRoundedBin)
+    return angleToBin(theta);
+  const int bin = rounded % kDirectionBins;
   return bin < 0 ? bin + kDirectionBins : bin;
 }
 
@@ -95,12 +116,13 @@ inline void prefetchDistances(const std::uint8_t* raw)
 }
 
 /// tableRayEnd (relational_update.h) without the branch: the end and whether the ray met an edge.
-inline std::int32_t tableEnd(const std::uint8_t* raw, const cv::Point& at, int bin, float& x, float& y)
+inline std::int32_t tableEnd(const std::uint8_t* raw, float at_x, float at_y, const HeadingRayBins& bins, int bin,
+                             float& x, float& y)
 {
-  const BinDirections& dir = binDirections();
-  x = at.x + raw[bin] * Prototype::kDistanceUnit * dir.cos[bin];
-  y = at.y + raw[bin] * Prototype::kDistanceUnit * dir.sin[bin];
-  return raw[bin] != Prototype::kNoEdge;
+  const int d = raw[bin];
+  x = at_x + d * bins.half_cos[bin];
+  y = at_y + d * bins.half_sin[bin];
+  return d != Prototype::kNoEdge;
 }
 
 /// Paper 4.1 in lanes: fitRelationalAffine (affineFromTriangles,
@@ -206,16 +228,20 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
     prefetchDistances(raw[lanes]);
   }
   const HeadingRayBins& bins = headingRayBins();
+  std::int32_t rounded[kLanes];
+  roundedBins(m.theta.data() + begin, lanes, rounded);
   TableEndLanes ends;
   for (std::size_t l = 0; l < lanes && v.triangle_valid; ++l)
   {
-    const int bin = headingBin(m.theta[begin + l]);
+    const int bin = headingBin(rounded[l], m.theta[begin + l]);
+    const float at_x = static_cast<float>(at[l].x), at_y = static_cast<float>(at[l].y);
     std::int32_t found = 1;
     for (int t = 0; t < kTriangleRays; ++t)
-      found &= tableEnd(raw[l], at[l], bins.triangle[bin][t], ends.triangle_x[t][l], ends.triangle_y[t][l]);
+      found &= tableEnd(raw[l], at_x, at_y, bins, bins.triangle[bin][t], ends.triangle_x[t][l], ends.triangle_y[t][l]);
     ends.triangle_found[l] = found;
     for (int j = 0; j < valid_count; ++j)
-      ends.ray_found[j][l] = tableEnd(raw[l], at[l], bins.feature[bin][valid_rays[j]], ends.ray_x[j][l], ends.ray_y[j][l]);
+      ends.ray_found[j][l] =
+          tableEnd(raw[l], at_x, at_y, bins, bins.feature[bin][valid_rays[j]], ends.ray_x[j][l], ends.ray_y[j][l]);
   }
 
   if (!v.triangle_valid)
@@ -233,18 +259,15 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
 
     // Paper eq. 6: the sum over v's valid feature rays of log p(dw_j) (eq. 5,
     // tabulated as in logRayFromSquared) or log p_invalid, in ray order.
-    float log_l[kLanes];
-    const float invalid_in_v = v.invalid_feature_rays * log_invalid;
-    for (std::size_t l = 0; l < lanes; ++l)
-      log_l[l] = invalid_in_v;
+    // First, in lanes, where each dw_j^2 falls in the table (cell -1: beyond
+    // it, log_far_); then the lookups and the sums, one M-particle at a time.
     const float last_index = static_cast<float>(table_.size() - 1);
-    const float* table = table_.data();
+    float fraction[kFeatureRays][kLanes];
+    std::int32_t cell[kFeatureRays][kLanes];
     for (int j = 0; j < valid_count; ++j)
     {
       const int k = valid_rays[j];
       const float image_x = v.feature_x[k], image_y = v.feature_y[k];
-      float index[kLanes];
-      std::int32_t cell[kLanes];
       for (std::size_t l = 0; l < lanes; ++l)
       {
         const float table_x = ends.ray_x[j][l], table_y = ends.ray_y[j][l];
@@ -259,23 +282,29 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
           dx = affine.a[0][l] * image_x + affine.a[1][l] * image_y + affine.a[2][l] - table_x;
           dy = affine.a[3][l] * image_x + affine.a[4][l] * image_y + affine.a[5][l] - table_y;
         }
-        const float at_index = (dx * dx + dy * dy) * inv_step_;
-        // Beyond the table (or not a number): log_far_, cell 0 unused.
-        index[l] = at_index < last_index ? at_index : -1.f;
-        cell[l] = static_cast<std::int32_t>(index[l] < 0.f ? 0.f : index[l]);
+        const float index = (dx * dx + dy * dy) * inv_step_;
+        const bool in_table = index < last_index;  // false for not a number too
+        const float index_in_table = in_table ? index : 0.f;
+        const std::int32_t truncated = static_cast<std::int32_t>(index_in_table);
+        cell[j][l] = in_table ? truncated : -1;
+        fraction[j][l] = index_in_table - static_cast<float>(truncated);
       }
-      float start[kLanes], slope[kLanes];
-      for (std::size_t l = 0; l < lanes; ++l)  // the table lookups: a gather, scalar
+    }
+    const float invalid_in_v = v.invalid_feature_rays * log_invalid;
+    const float* table = table_.data();
+    float log_l[kLanes];
+    for (std::size_t l = 0; l < lanes; ++l)
+    {
+      float sum = invalid_in_v;
+      for (int j = 0; j < valid_count; ++j)
       {
-        start[l] = table[cell[l]];
-        slope[l] = table[cell[l] + 1] - table[cell[l]];
+        const std::int32_t c = cell[j][l] < 0 ? 0 : cell[j][l];
+        const float start = table[c];
+        const float interpolated = start + fraction[j][l] * (table[c + 1] - start);
+        const float log_ray = cell[j][l] < 0 ? log_far_ : interpolated;
+        sum += ends.ray_found[j][l] ? log_ray : log_invalid;
       }
-      for (std::size_t l = 0; l < lanes; ++l)
-      {
-        const float fraction = index[l] - static_cast<float>(cell[l]);
-        const float log_ray = index[l] < 0.f ? log_far_ : start[l] + fraction * slope[l];
-        log_l[l] += ends.ray_found[j][l] ? log_ray : log_invalid;
-      }
+      log_l[l] = sum;
     }
 
     for (std::size_t l = 0; l < lanes; ++l)
