@@ -100,6 +100,10 @@ private:
   float log_far_;
   float inv_step_;
   std::vector<float> table_;
+  /// For measure's lanes: (table_[i], table_[i + 1] - table_[i]) for each
+  /// cell i of table_, then (log_far_, 0) and (log p_invalid, 0), so that
+  /// every ray term is start + fraction * slope (fraction 0 for the last two).
+  std::vector<float> cell_start_slope_;
   float min_triangle_area_;
   float max_affine_scale_;
   DeviationSpace deviation_space_;

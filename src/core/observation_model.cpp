@@ -43,6 +43,9 @@ ObservationModel::ObservationModel(const Params& params)
   for (int i = 0; i < kTableEntries; ++i)
     table_[i] = static_cast<float>(logRay(std::sqrt(i * step)));
   log_far_ = static_cast<float>(logRay(1e6 * sigma_w_));
+  for (int i = 0; i + 1 < kTableEntries; ++i)
+    cell_start_slope_.insert(cell_start_slope_.end(), {table_[i], table_[i + 1] - table_[i]});
+  cell_start_slope_.insert(cell_start_slope_.end(), {log_far_, 0.f, static_cast<float>(log_invalid_), 0.f});
 }
 
 // Paper eq. 5: p(dw) = p_outlier + (1 - p_outlier) N(dw; 0, sigma_w^2); the

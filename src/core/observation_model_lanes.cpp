@@ -259,9 +259,12 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
 
     // Paper eq. 6: the sum over v's valid feature rays of log p(dw_j) (eq. 5,
     // tabulated as in logRayFromSquared) or log p_invalid, in ray order.
-    // First, in lanes, where each dw_j^2 falls in the table (cell -1: beyond
-    // it, log_far_); then the lookups and the sums, one M-particle at a time.
+    // First, in lanes, the cell of cell_start_slope_ each ray's term comes
+    // from (the last two: beyond the table, and no edge in it) and the
+    // fraction into it; then the lookups and sums, one M-particle at a time.
     const float last_index = static_cast<float>(table_.size() - 1);
+    const std::int32_t far_cell = static_cast<std::int32_t>(table_.size() - 1);
+    const std::int32_t invalid_cell = far_cell + 1;
     float fraction[kFeatureRays][kLanes];
     std::int32_t cell[kFeatureRays][kLanes];
     for (int j = 0; j < valid_count; ++j)
@@ -284,25 +287,23 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
         }
         const float index = (dx * dx + dy * dy) * inv_step_;
         const bool in_table = index < last_index;  // false for not a number too
+        const bool found = ends.ray_found[j][l] != 0;
         const float index_in_table = in_table ? index : 0.f;
         const std::int32_t truncated = static_cast<std::int32_t>(index_in_table);
-        cell[j][l] = in_table ? truncated : -1;
-        fraction[j][l] = index_in_table - static_cast<float>(truncated);
+        cell[j][l] = found ? (in_table ? truncated : far_cell) : invalid_cell;
+        fraction[j][l] = found ? index_in_table - static_cast<float>(truncated) : 0.f;
       }
     }
     const float invalid_in_v = v.invalid_feature_rays * log_invalid;
-    const float* table = table_.data();
+    const float* start_slope = cell_start_slope_.data();
     float log_l[kLanes];
     for (std::size_t l = 0; l < lanes; ++l)
     {
       float sum = invalid_in_v;
       for (int j = 0; j < valid_count; ++j)
       {
-        const std::int32_t c = cell[j][l] < 0 ? 0 : cell[j][l];
-        const float start = table[c];
-        const float interpolated = start + fraction[j][l] * (table[c + 1] - start);
-        const float log_ray = cell[j][l] < 0 ? log_far_ : interpolated;
-        sum += ends.ray_found[j][l] ? log_ray : log_invalid;
+        const float* cell_pair = start_slope + 2 * cell[j][l];
+        sum += cell_pair[0] + fraction[j][l] * cell_pair[1];
       }
       log_l[l] = sum;
     }
