@@ -1,10 +1,11 @@
-// bestHeadingBin (heading_proposal.h) with every direction bin costed at
-// once: the pixel's log distances laid out twice over, so that feature ray k
-// of every heading is one contiguous run, and headingCost's sums kept per
-// bin in float lanes the compiler vectorises. A ray that is not valid on both
-// sides adds exactly 0 to the sums, so each bin's cost is bitwise that of
-// headingCost, and the coarse-to-fine choice of bestHeadingBinReference
-// (heading_proposal.cpp) is made again on the same costs.
+// bestHeadingBin (heading_proposal.h) with the coarse pass costed in lanes:
+// the pixel's log distances laid out twice over and split by bin mod 3, so
+// that feature ray k of every coarse heading (every third bin) is one
+// contiguous run, and headingCost's sums kept per heading in float lanes the
+// compiler vectorises. A ray that is not valid on both sides adds exactly 0
+// to the sums, so each cost is bitwise that of headingCost, and the
+// coarse-to-fine choice of bestHeadingBinReference (heading_proposal.cpp) is
+// made again on the same costs.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -18,46 +19,95 @@ namespace amcr
 namespace
 {
 constexpr int kCoarseBinStep = 3;  // as in bestHeadingBinReference
+constexpr int kCoarseBins = kDirectionBins / kCoarseBinStep;
+constexpr int kPhaseLength = 2 * kCoarseBins;  // two turns of one phase (bin mod 3)
 
-/// headingCost of every direction bin at the pixel whose raw distances are `raw`.
-void headingCosts(const std::uint8_t* raw, const RaySignature& signature, const RayOffsets& offsets,
-                  float cost[kDirectionBins])
+/// The signature's log distances and validity, as headingCost takes them.
+struct SignatureLogs
 {
-  const std::array<float, 256>& logs = rawDistanceLogs();
-  float m_log[2 * kDirectionBins];
-  std::int32_t m_valid[2 * kDirectionBins];
-  for (int b = 0; b < kDirectionBins; ++b)
+  float log[kFeatureRays];
+  bool valid[kFeatureRays];
+  explicit SignatureLogs(const RaySignature& signature)
   {
-    m_log[b] = m_log[b + kDirectionBins] = logs[raw[b]];
-    m_valid[b] = m_valid[b + kDirectionBins] = raw[b] != Prototype::kNoEdge;
+    for (int k = 0; k < kFeatureRays; ++k)
+    {
+      valid[k] = signature.distance[k] > 0.f;
+      log[k] = valid[k] ? std::log(std::max(0.25f, signature.distance[k])) : 0.f;
+    }
   }
-  float sum[kDirectionBins] = {}, sum_sq[kDirectionBins] = {}, both[kDirectionBins] = {};
-  std::fill(cost, cost + kDirectionBins, 0.f);
+};
+
+/// A pixel's log distances and validity over two turns, by phase: bin b
+/// at [b % 3][b / 3].
+struct PixelLogs
+{
+  float log[kCoarseBinStep][kPhaseLength];
+  std::int32_t valid[kCoarseBinStep][kPhaseLength];
+  explicit PixelLogs(const std::uint8_t* raw)
+  {
+    const std::array<float, 256>& logs = rawDistanceLogs();
+    for (int phase = 0; phase < kCoarseBinStep; ++phase)
+      for (int c = 0; c < kCoarseBins; ++c)
+      {
+        const std::uint8_t d = raw[c * kCoarseBinStep + phase];
+        log[phase][c] = log[phase][c + kCoarseBins] = logs[d];
+        valid[phase][c] = valid[phase][c + kCoarseBins] = d != Prototype::kNoEdge;
+      }
+  }
+};
+
+/// headingCost of the coarse headings 0, 3, 6, ... (lane c: bin 3 c).
+void coarseCosts(const PixelLogs& m, const SignatureLogs& v, const RayOffsets& offsets, float cost[kCoarseBins])
+{
+  float sum[kCoarseBins] = {}, sum_sq[kCoarseBins] = {}, both[kCoarseBins] = {};
+  std::fill(cost, cost + kCoarseBins, 0.f);
   for (int k = 0; k < kFeatureRays; ++k)
   {
-    const float* m_log_k = m_log + offsets.bin[k];
-    const std::int32_t* m_valid_k = m_valid + offsets.bin[k];
-    if (!(signature.distance[k] > 0.f))
+    const int phase = offsets.bin[k] % kCoarseBinStep, shift = offsets.bin[k] / kCoarseBinStep;
+    const float* m_log = m.log[phase] + shift;
+    const std::int32_t* m_valid = m.valid[phase] + shift;
+    if (!v.valid[k])
     {
-      for (int b = 0; b < kDirectionBins; ++b)
-        cost[b] += m_valid_k[b] ? kHeadingMismatchPenalty : 0.f;
+      for (int c = 0; c < kCoarseBins; ++c)
+        cost[c] += m_valid[c] ? kHeadingMismatchPenalty : 0.f;
       continue;
     }
-    const float v_log = std::log(std::max(0.25f, signature.distance[k]));
-    const float log_scale = offsets.log_scale[k];
-    for (int b = 0; b < kDirectionBins; ++b)
+    const float v_log = v.log[k], log_scale = offsets.log_scale[k];
+    for (int c = 0; c < kCoarseBins; ++c)
     {
-      const bool valid = m_valid_k[b] != 0;
-      const float any_diff = m_log_k[b] - log_scale - v_log;
+      const bool valid = m_valid[c] != 0;
+      const float any_diff = m_log[c] - log_scale - v_log;
       const float diff = valid ? any_diff : 0.f;
-      sum[b] += diff;
-      sum_sq[b] += diff * diff;
-      both[b] += valid ? 1.f : 0.f;
-      cost[b] += valid ? 0.f : kHeadingMismatchPenalty;
+      sum[c] += diff;
+      sum_sq[c] += diff * diff;
+      both[c] += valid ? 1.f : 0.f;
+      cost[c] += valid ? 0.f : kHeadingMismatchPenalty;
     }
   }
-  for (int b = 0; b < kDirectionBins; ++b)
-    cost[b] = both[b] > 0.f ? cost[b] + sum_sq[b] - sum[b] * sum[b] / both[b] : cost[b];
+  for (int c = 0; c < kCoarseBins; ++c)
+    cost[c] = both[c] > 0.f ? cost[c] + sum_sq[c] - sum[c] * sum[c] / both[c] : cost[c];
+}
+
+/// headingCost of one heading bin, the same masked sums one ray at a time.
+float binCost(const PixelLogs& m, const SignatureLogs& v, const RayOffsets& offsets, int bin)
+{
+  float sum = 0.f, sum_sq = 0.f, both = 0.f, cost = 0.f;
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const int b = bin + offsets.bin[k];  // < 2 turns
+    const bool valid = m.valid[b % kCoarseBinStep][b / kCoarseBinStep] != 0;
+    if (!v.valid[k])
+    {
+      cost += valid ? kHeadingMismatchPenalty : 0.f;
+      continue;
+    }
+    const float diff = valid ? m.log[b % kCoarseBinStep][b / kCoarseBinStep] - offsets.log_scale[k] - v.log[k] : 0.f;
+    sum += diff;
+    sum_sq += diff * diff;
+    both += valid ? 1.f : 0.f;
+    cost += valid ? 0.f : kHeadingMismatchPenalty;
+  }
+  return both > 0.f ? cost + sum_sq - sum * sum / both : cost;
 }
 }  // namespace
 
@@ -65,22 +115,24 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
 {
   if (signature.valid_rays() < 3)
     return -1;
-  float cost[kDirectionBins];
-  headingCosts(prototype.rawDistances(x, y), signature, offsets, cost);
+  const PixelLogs m(prototype.rawDistances(x, y));
+  const SignatureLogs v(signature);
+  float cost[kCoarseBins];
+  coarseCosts(m, v, offsets, cost);
   // Coarse to fine, as bestHeadingBinReference: every third bin, then the bins around the best.
   int best_bin = 0;
   float best_cost = std::numeric_limits<float>::infinity();
-  for (int bin = 0; bin < kDirectionBins; bin += kCoarseBinStep)
-    if (cost[bin] < best_cost)
+  for (int c = 0; c < kCoarseBins; ++c)
+    if (cost[c] < best_cost)
     {
-      best_cost = cost[bin];
-      best_bin = bin;
+      best_cost = cost[c];
+      best_bin = c * kCoarseBinStep;
     }
   const int coarse = best_bin;
   for (int offset = 1 - kCoarseBinStep; offset < kCoarseBinStep; ++offset)
   {
     const int bin = (coarse + offset + kDirectionBins) % kDirectionBins;
-    const float c = offset == 0 ? best_cost : cost[bin];
+    const float c = offset == 0 ? best_cost : binCost(m, v, offsets, bin);
     if (c < best_cost)
     {
       best_cost = c;
