@@ -1,5 +1,5 @@
-// ObservationModel::measure for the default ray correspondence (per-bin
-// lookups), in blocks of M-particles: a scalar pass gathers each one's table
+// ObservationModel::measure for ray_correspondence paper (per-bin lookups),
+// in blocks of M-particles: a scalar pass gathers each one's table
 // pixel, triangle ends and feature-ray ends into structure-of-arrays lanes,
 // then plain float loops over the lanes (which the compiler vectorises) fit
 // the triangle affine (paper 4.1) and sum eq. 6. Every lane does the same
