@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <string>
 
+#include "amcr/corrected_scan.h"
 #include "amcr/errors.h"
 #include "amcr/observation_model.h"
 #include "amcr/particles.h"
@@ -180,12 +181,105 @@ void fitAffineLanes(const TableEndLanes& ends, const VRayEnds& v, float min_area
     out.accepted[l] = ends.triangle_found[l] & dst_accepted & area_accepted & scale_accepted & invertible;
   }
 }
+
+/// tableDirection (corrected_scan.h) of `lanes` M-particles in lanes: the
+/// direction the linear map l (row-major 2x2, lane-wise) takes image
+/// direction (dx, dy) to, unnormalised (x, y) and unit (ux, uy).
+struct DirectionLanes
+{
+  float x[kLanes], y[kLanes], ux[kLanes], uy[kLanes];
+};
+
+void directionLanes(const float (&l)[4][kLanes], float dx, float dy, std::size_t lanes, DirectionLanes& out)
+{
+  for (std::size_t i = 0; i < lanes; ++i)
+  {
+    const float x = l[0][i] * dx + l[1][i] * dy;
+    const float y = l[2][i] * dx + l[3][i] * dy;
+    const float inverse_norm = 1.f / std::sqrt(x * x + y * y);
+    out.x[i] = x;
+    out.y[i] = y;
+    out.ux[i] = x * inverse_norm;
+    out.uy[i] = y * inverse_norm;
+  }
+}
+
+/// The rest of tableDirection for lane i: its position in direction bins
+/// (cv::fastAtan2, as there), then correctedRayEnd.
+inline std::int32_t correctedEnd(const DirectionLanes& d, std::size_t i, const std::uint8_t* raw, const cv::Point& at,
+                                 float& x, float& y)
+{
+  TableDirection dir;
+  dir.ux = d.ux[i];
+  dir.uy = d.uy[i];
+  dir.bin_position = cv::fastAtan2(d.y[i], d.x[i]) * (kDirectionBins / 360.f);
+  if (!(dir.bin_position < kDirectionBins))
+    dir.bin_position = 0.f;
+  return correctedRayEnd(raw, at, dir, x, y);
+}
+
+/// ray_correspondence affine, no refits: the triangle ends of each M-particle
+/// read along its view shape turned onto its heading (startingShape), as
+/// fitCorrectedAffine's first pass reads them.
+void correctedTriangleEnds(const MParticleSet& m, std::size_t begin, std::size_t lanes,
+                           const std::uint8_t* const raw[], const cv::Point at[], const VRayEnds& v,
+                           TableEndLanes& ends)
+{
+  float l[4][kLanes];
+  for (std::size_t i = 0; i < lanes; ++i)
+  {
+    const std::size_t p = begin + i;
+    const float assumed[4] = {m.shape[0][p], m.shape[1][p], m.shape[1][p], m.shape[2][p]};
+    float shape[4];
+    startingShape(assumed, m.theta[p], v.feature_dx[0], v.feature_dy[0], shape);
+    for (int e = 0; e < 4; ++e)
+      l[e][i] = shape[e];
+  }
+  for (std::size_t i = 0; i < lanes; ++i)
+    ends.triangle_found[i] = 1;
+  DirectionLanes d;
+  for (int t = 0; t < kTriangleRays; ++t)
+  {
+    directionLanes(l, v.triangle_dx[t], v.triangle_dy[t], lanes, d);
+    for (std::size_t i = 0; i < lanes; ++i)
+      if (ends.triangle_found[i])
+        ends.triangle_found[i] = correctedEnd(d, i, raw[i], at[i], ends.triangle_x[t][i], ends.triangle_y[t][i]);
+  }
+}
+
+/// ray_correspondence affine: the ends of v's valid feature rays (valid_rays)
+/// read along the fitted A's linear part, for the accepted lanes
+/// (correctedLogLikelihood); the others meet no edge.
+void correctedFeatureEnds(const AffineLanes& affine, std::size_t lanes, const std::uint8_t* const raw[],
+                          const cv::Point at[], const VRayEnds& v, const int* valid_rays, int valid_count,
+                          TableEndLanes& ends)
+{
+  float l[4][kLanes];
+  for (std::size_t i = 0; i < lanes; ++i)
+  {
+    l[0][i] = affine.a[0][i];
+    l[1][i] = affine.a[1][i];
+    l[2][i] = affine.a[3][i];
+    l[3][i] = affine.a[4][i];
+  }
+  DirectionLanes d;
+  for (int j = 0; j < valid_count; ++j)
+  {
+    directionLanes(l, v.feature_dx[valid_rays[j]], v.feature_dy[valid_rays[j]], lanes, d);
+    for (std::size_t i = 0; i < lanes; ++i)
+    {
+      ends.ray_x[j][i] = ends.ray_y[j][i] = 0.f;
+      ends.ray_found[j][i] =
+          affine.accepted[i] ? correctedEnd(d, i, raw[i], at[i], ends.ray_x[j][i], ends.ray_y[j][i]) : 0;
+    }
+  }
+}
 }  // namespace
 
 void ObservationModel::measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
                                std::size_t end) const
 {
-  if (ray_correspondence_ == RayCorrespondence::kAffine)
+  if (ray_correspondence_ == RayCorrespondence::kAffine && affine_refits_ > 0)
   {
     measureReference(memory, v, m, begin, end);
     return;
@@ -231,7 +325,10 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
   std::int32_t rounded[kLanes];
   roundedBins(m.theta.data() + begin, lanes, rounded);
   TableEndLanes ends;
-  for (std::size_t l = 0; l < lanes && v.triangle_valid; ++l)
+  const bool corrected = ray_correspondence_ == RayCorrespondence::kAffine;
+  if (corrected && v.triangle_valid)
+    correctedTriangleEnds(m, begin, lanes, raw, at, v, ends);
+  for (std::size_t l = 0; l < lanes && v.triangle_valid && !corrected; ++l)
   {
     const int bin = headingBin(rounded[l], m.theta[begin + l]);
     const float at_x = static_cast<float>(at[l].x), at_y = static_cast<float>(at[l].y);
@@ -256,6 +353,8 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
   {
     AffineLanes affine;
     fitAffineLanes(ends, v, min_triangle_area_, max_affine_scale_, lanes, affine);
+    if (corrected)
+      correctedFeatureEnds(affine, lanes, raw, at, v, valid_rays, valid_count, ends);
 
     // Paper eq. 6: the sum over v's valid feature rays of log p(dw_j) (eq. 5,
     // tabulated as in logRayFromSquared) or log p_invalid, in ray order.
