@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include "amcr/affine.h"
+#include "amcr/corrected_scan.h"
 #include "amcr/errors.h"
 #include "amcr/heading_proposal.h"
 #include "amcr/observation_model.h"
@@ -262,17 +263,71 @@ TEST_F(UpdateLoop, MeasureEqualsMeasureReferenceOverASweep)
   }
 }
 
+// ray_correspondence affine (the default): with no refits the block path
+// reads the table along each M-particle's view shape and then along A
+// (corrected_scan.h); with refits measure is measureReference. Frontal and
+// oblique view shapes, both spaces and forms.
+TEST_F(UpdateLoop, MeasureEqualsMeasureReferenceWithAffineCorrectedLookups)
+{
+  std::mt19937_64 gen(202612161);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const amcr::Params& swept : sweptParams())
+    for (int refits : {0, 1})
+    {
+      amcr::Params p = swept;
+      p.ray_correspondence = amcr::RayCorrespondence::kAffine;
+      p.affine_refits = refits;
+      const amcr::ObservationModel model(p);
+      int compared = 0, accepted = 0, refused = 0, bitwise_equal = 0;
+      for (int trial = 0; trial < 100; ++trial)
+      {
+        const int count = 1 + static_cast<int>(gen() % 100);
+        amcr::MParticleSet initial = randomMParticles(gen, *memory_, count);
+        for (int i = 0; i < count; ++i)
+        {
+          float shape[3] = {1.f, 0.f, 1.f};
+          if (i % 2 == 1)
+            amcr::obliqueShape(static_cast<float>(1.0 + 3.0 * unit(gen)), static_cast<float>(M_PI * unit(gen)),
+                               shape);
+          for (int e = 0; e < 3; ++e)
+            initial.shape[e][i] = shape[e];
+        }
+        const cv::Point at0 = amcr::nearestTablePixel(initial.x[0], initial.y[0]);
+        const amcr::VRayEnds v = randomVEnds(gen, (*memory_)[initial.prototype[0]], at0,
+                                             amcr::angleToBin(initial.theta[0]), p.max_affine_scale);
+        amcr::MParticleSet fast = initial, ref = initial;
+        model.measure(*memory_, v, fast, 0, count);
+        model.measureReference(*memory_, v, ref, 0, count);
+        for (int i = 0; i < count; ++i)
+        {
+          expectSameParticle(fast, ref, i, describe(p) + ", refits " + std::to_string(refits), bitwise_equal);
+          if (HasFatalFailure())
+            return;
+          (fast.affine_valid[i] ? accepted : refused)++;
+        }
+        compared += count;
+      }
+      EXPECT_GE(accepted, 1) << describe(p);
+      EXPECT_GE(refused, 10) << describe(p);
+      if (kBitwise)
+        EXPECT_EQ(bitwise_equal, compared) << describe(p);
+    }
+}
+
 // An M-particle outside its table: InputError naming it, from both paths,
 // with the M-particles before it updated alike.
 TEST_F(UpdateLoop, OutsideTheTableThrowsAndNamesTheParticleInBothPaths)
 {
   std::mt19937_64 gen(16);
-  amcr::Params params;
-  params.ray_correspondence = amcr::RayCorrespondence::kPaper;
-  const amcr::ObservationModel model(params);
+  for (amcr::RayCorrespondence correspondence : {amcr::RayCorrespondence::kPaper, amcr::RayCorrespondence::kAffine})
   for (int outside : {0, 5, 31, 32, 37, 70})
   {
+    amcr::Params params;
+    params.ray_correspondence = correspondence;
+    const amcr::ObservationModel model(params);
     amcr::MParticleSet initial = randomMParticles(gen, *memory_, 80);
+    for (int i = 0; i < 80; ++i)
+      initial.shape[0][i] = initial.shape[2][i] = 1.f;  // frontal view shapes
     const cv::Point at0 = amcr::nearestTablePixel(initial.x[0], initial.y[0]);
     const amcr::VRayEnds v =
         randomVEnds(gen, (*memory_)[initial.prototype[0]], at0, amcr::angleToBin(initial.theta[0]), 3.0);
