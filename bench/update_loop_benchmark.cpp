@@ -86,8 +86,8 @@ amcr::VRayEnds benchVEnds(const amcr::PrototypeMemory& memory, const amcr::MPart
 
 // One iteration: every V-particle's update of its 1020 M-particles. Args:
 // path (0 measureReference, 1 measure), deviation space (0 image, 1
-// prototype), ray correspondence (0 per-bin lookups, the block path; 1
-// affine, which measure leaves to the per-particle code).
+// prototype), ray correspondence (0 paper: per-bin lookups; 1 affine, the
+// default: lookups along the view shape, then along A, no refits).
 void BM_UpdateLoop(benchmark::State& state)
 {
   const auto memory = amcr_bench::cachedMemory(kPrototypes);
@@ -126,6 +126,8 @@ BENCHMARK(BM_UpdateLoop)
     ->Args({1, 1, 0})
     ->Args({0, 0, 1})
     ->Args({1, 0, 1})
+    ->Args({0, 1, 1})
+    ->Args({1, 1, 1})
     ->Unit(benchmark::kMillisecond);
 
 // bestHeadingBin at interior pixels for signatures of the table, scaled, with
