@@ -56,17 +56,16 @@ public:
   /// heading, with affine_refits re-estimates of A (default none: each one
   /// lets every hypothesis fit itself to what it sees, and the likelihood
   /// tells them apart less; README, "Oblique views").
-  /// With ray_correspondence paper (the per-bin lookups) the M-particles go
-  /// through in blocks (observation_model_lanes.cpp), with the same output
-  /// as measureReference: bitwise on x86-64 with GCC, within float rounding
-  /// elsewhere (test_update_loop.cpp states the tolerance). With affine (the
-  /// default) measure is measureReference.
+  /// The M-particles go through in blocks (observation_model_lanes.cpp),
+  /// with the same output as measureReference: bitwise on x86-64 with GCC,
+  /// within float rounding elsewhere (test_update_loop.cpp states the
+  /// tolerance); with affine_refits above 0, measure is measureReference.
   void measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
                std::size_t end) const;
 
   /// The same update one M-particle at a time: the plain reference that the
   /// block path of measure is tested against (test_update_loop.cpp), and the
-  /// path of ray_correspondence affine.
+  /// path of affine_refits above 0.
   void measureReference(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
                         std::size_t end) const;
 
@@ -84,8 +83,8 @@ public:
                                const RelationalAffine& affine) const;
 
 private:
-  /// measure for ray_correspondence paper: M-particles [begin, end), at
-  /// most one block of them (observation_model_lanes.cpp).
+  /// measure without refits: M-particles [begin, end), at most one block of
+  /// them (observation_model_lanes.cpp).
   void measureBlock(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
                     std::size_t end) const;
 

@@ -1,8 +1,9 @@
-// ObservationModel::measure for ray_correspondence paper (per-bin lookups),
-// in blocks of M-particles: a scalar pass gathers each one's table
-// pixel, triangle ends and feature-ray ends into structure-of-arrays lanes,
-// then plain float loops over the lanes (which the compiler vectorises) fit
-// the triangle affine (paper 4.1) and sum eq. 6. Every lane does the same
+// ObservationModel::measure in blocks of M-particles: a scalar pass gathers
+// each one's table pixel, triangle ends and feature-ray ends (per-bin
+// lookups, or with ray_correspondence affine and no refits the lookups of
+// corrected_scan.h) into structure-of-arrays lanes, then plain float loops
+// over the lanes (which the compiler vectorises) fit the triangle affine
+// (paper 4.1) and sum eq. 6. Every lane does the same
 // float operations in the same order as measureReference
 // (observation_model.cpp, relational_update.h, affine.cpp), so the output
 // is the same; a rejected triangle is masked, not branched around.
