@@ -205,18 +205,61 @@ void directionLanes(const float (&l)[4][kLanes], float dx, float dy, std::size_t
   }
 }
 
-/// The rest of tableDirection for lane i: its position in direction bins
-/// (cv::fastAtan2, as there), then correctedRayEnd.
-inline std::int32_t correctedEnd(const DirectionLanes& d, std::size_t i, const std::uint8_t* raw, const cv::Point& at,
-                                 float& x, float& y)
+/// The rest of tableDirection (the position in direction bins, by
+/// cv::fastAtan2 as there) and correctedRayEnd (corrected_scan.h) for the
+/// lanes whose `active` is set, in lanes but for the arctangent and the table
+/// reads; `found` is 0 for the others.
+void correctedEnds(const DirectionLanes& d, std::size_t lanes, const std::int32_t* active,
+                   const std::uint8_t* const raw[], const cv::Point at[], const HeadingRayBins& bins, float* x,
+                   float* y, std::int32_t* found)
 {
-  TableDirection dir;
-  dir.ux = d.ux[i];
-  dir.uy = d.uy[i];
-  dir.bin_position = cv::fastAtan2(d.y[i], d.x[i]) * (kDirectionBins / 360.f);
-  if (!(dir.bin_position < kDirectionBins))
-    dir.bin_position = 0.f;
-  return correctedRayEnd(raw, at, dir, x, y);
+  float position[kLanes];
+  for (std::size_t i = 0; i < lanes; ++i)
+  {
+    const float p = active[i] ? cv::fastAtan2(d.y[i], d.x[i]) * (kDirectionBins / 360.f) : 0.f;
+    position[i] = p < kDirectionBins ? p : 0.f;  // not a number too
+  }
+  float share[kLanes];
+  std::int32_t bin0[kLanes], bin1[kLanes], nearest[kLanes];
+  for (std::size_t i = 0; i < lanes; ++i)
+  {
+    const std::int32_t below = static_cast<std::int32_t>(position[i]);  // [0, kDirectionBins)
+    share[i] = position[i] - static_cast<float>(below);
+    bin0[i] = below;
+    bin1[i] = below + 1 == kDirectionBins ? 0 : below + 1;
+    nearest[i] = share[i] < 0.5f ? bin0[i] : bin1[i];
+  }
+  std::int32_t r0[kLanes], r1[kLanes], rn[kLanes];
+  float step_x[kLanes], step_y[kLanes], at_x[kLanes], at_y[kLanes];
+  for (std::size_t i = 0; i < lanes; ++i)  // the table reads, scalar
+  {
+    r0[i] = raw[i][bin0[i]];
+    r1[i] = raw[i][bin1[i]];
+    rn[i] = raw[i][nearest[i]];
+    step_x[i] = bins.half_cos[nearest[i]];
+    step_y[i] = bins.half_sin[nearest[i]];
+    at_x[i] = static_cast<float>(at[i].x);
+    at_y[i] = static_cast<float>(at[i].y);
+  }
+  for (std::size_t i = 0; i < lanes; ++i)
+  {
+    const std::int32_t larger = r0[i] > r1[i] ? r0[i] : r1[i];
+    const std::int32_t quarter = detail::kSameEdgeRelativeQuarters * larger / 4;
+    const std::int32_t limit = quarter > detail::kSameEdgeAbsolute ? quarter : detail::kSameEdgeAbsolute;
+    const std::int32_t gap = std::abs(r0[i] - r1[i]);
+    const std::int32_t one_edge = (r0[i] != Prototype::kNoEdge) & (r1[i] != Prototype::kNoEdge) &
+                                  (gap <= limit);
+    // One straight edge: the distance interpolated along the direction; else the nearest bin's end (tableRayEnd).
+    const float r =
+        (static_cast<float>(r0[i]) + share[i] * static_cast<float>(r1[i] - r0[i])) * Prototype::kDistanceUnit;
+    const float nearest_x = at_x[i] + static_cast<float>(rn[i]) * step_x[i];
+    const float nearest_y = at_y[i] + static_cast<float>(rn[i]) * step_y[i];
+    const float along_x = at_x[i] + r * d.ux[i];
+    const float along_y = at_y[i] + r * d.uy[i];
+    x[i] = one_edge ? along_x : nearest_x;
+    y[i] = one_edge ? along_y : nearest_y;
+    found[i] = (active[i] != 0) & (rn[i] != Prototype::kNoEdge);
+  }
 }
 
 /// ray_correspondence affine, no refits: the triangle ends of each M-particle
@@ -224,7 +267,7 @@ inline std::int32_t correctedEnd(const DirectionLanes& d, std::size_t i, const s
 /// fitCorrectedAffine's first pass reads them.
 void correctedTriangleEnds(const MParticleSet& m, std::size_t begin, std::size_t lanes,
                            const std::uint8_t* const raw[], const cv::Point at[], const VRayEnds& v,
-                           TableEndLanes& ends)
+                           const HeadingRayBins& bins, TableEndLanes& ends)
 {
   float l[4][kLanes];
   for (std::size_t i = 0; i < lanes; ++i)
@@ -242,9 +285,9 @@ void correctedTriangleEnds(const MParticleSet& m, std::size_t begin, std::size_t
   for (int t = 0; t < kTriangleRays; ++t)
   {
     directionLanes(l, v.triangle_dx[t], v.triangle_dy[t], lanes, d);
-    for (std::size_t i = 0; i < lanes; ++i)
-      if (ends.triangle_found[i])
-        ends.triangle_found[i] = correctedEnd(d, i, raw[i], at[i], ends.triangle_x[t][i], ends.triangle_y[t][i]);
+    std::int32_t active[kLanes];
+    std::copy(ends.triangle_found, ends.triangle_found + lanes, active);
+    correctedEnds(d, lanes, active, raw, at, bins, ends.triangle_x[t], ends.triangle_y[t], ends.triangle_found);
   }
 }
 
@@ -253,7 +296,7 @@ void correctedTriangleEnds(const MParticleSet& m, std::size_t begin, std::size_t
 /// (correctedLogLikelihood); the others meet no edge.
 void correctedFeatureEnds(const AffineLanes& affine, std::size_t lanes, const std::uint8_t* const raw[],
                           const cv::Point at[], const VRayEnds& v, const int* valid_rays, int valid_count,
-                          TableEndLanes& ends)
+                          const HeadingRayBins& bins, TableEndLanes& ends)
 {
   float l[4][kLanes];
   for (std::size_t i = 0; i < lanes; ++i)
@@ -267,12 +310,7 @@ void correctedFeatureEnds(const AffineLanes& affine, std::size_t lanes, const st
   for (int j = 0; j < valid_count; ++j)
   {
     directionLanes(l, v.feature_dx[valid_rays[j]], v.feature_dy[valid_rays[j]], lanes, d);
-    for (std::size_t i = 0; i < lanes; ++i)
-    {
-      ends.ray_x[j][i] = ends.ray_y[j][i] = 0.f;
-      ends.ray_found[j][i] =
-          affine.accepted[i] ? correctedEnd(d, i, raw[i], at[i], ends.ray_x[j][i], ends.ray_y[j][i]) : 0;
-    }
+    correctedEnds(d, lanes, affine.accepted, raw, at, bins, ends.ray_x[j], ends.ray_y[j], ends.ray_found[j]);
   }
 }
 }  // namespace
@@ -328,7 +366,7 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
   TableEndLanes ends;
   const bool corrected = ray_correspondence_ == RayCorrespondence::kAffine;
   if (corrected && v.triangle_valid)
-    correctedTriangleEnds(m, begin, lanes, raw, at, v, ends);
+    correctedTriangleEnds(m, begin, lanes, raw, at, v, bins, ends);
   for (std::size_t l = 0; l < lanes && v.triangle_valid && !corrected; ++l)
   {
     const int bin = headingBin(rounded[l], m.theta[begin + l]);
@@ -355,7 +393,7 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
     AffineLanes affine;
     fitAffineLanes(ends, v, min_triangle_area_, max_affine_scale_, lanes, affine);
     if (corrected)
-      correctedFeatureEnds(affine, lanes, raw, at, v, valid_rays, valid_count, ends);
+      correctedFeatureEnds(affine, lanes, raw, at, v, valid_rays, valid_count, bins, ends);
 
     // Paper eq. 6: the sum over v's valid feature rays of log p(dw_j) (eq. 5,
     // tabulated as in logRayFromSquared) or log p_invalid, in ray order.
