@@ -11,6 +11,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 #include "amcr/corrected_scan.h"
@@ -205,6 +206,20 @@ void directionLanes(const float (&l)[4][kLanes], float dx, float dy, std::size_t
   }
 }
 
+/// mask ? a : b for a mask of all ones or all zeros, on the bits: the same
+/// value, as a select the vectoriser takes (GCC 12 does not take the float one
+/// on an integer condition).
+inline float selectBits(std::int32_t mask, float a, float b)
+{
+  std::int32_t bits_a, bits_b;
+  std::memcpy(&bits_a, &a, sizeof a);
+  std::memcpy(&bits_b, &b, sizeof b);
+  const std::int32_t bits = (bits_a & mask) | (bits_b & ~mask);
+  float out;
+  std::memcpy(&out, &bits, sizeof out);
+  return out;
+}
+
 /// The rest of tableDirection (the position in direction bins, by
 /// cv::fastAtan2 as there) and correctedRayEnd (corrected_scan.h) for the
 /// lanes whose `active` is set, in lanes but for the arctangent and the table
@@ -247,8 +262,8 @@ void correctedEnds(const DirectionLanes& d, std::size_t lanes, const std::int32_
     const std::int32_t quarter = detail::kSameEdgeRelativeQuarters * larger / 4;
     const std::int32_t limit = quarter > detail::kSameEdgeAbsolute ? quarter : detail::kSameEdgeAbsolute;
     const std::int32_t gap = std::abs(r0[i] - r1[i]);
-    const std::int32_t one_edge = (r0[i] != Prototype::kNoEdge) & (r1[i] != Prototype::kNoEdge) &
-                                  (gap <= limit);
+    const std::int32_t one_edge =
+        -((r0[i] != Prototype::kNoEdge) & (r1[i] != Prototype::kNoEdge) & (gap <= limit));  // all ones or zeros
     // One straight edge: the distance interpolated along the direction; else the nearest bin's end (tableRayEnd).
     const float r =
         (static_cast<float>(r0[i]) + share[i] * static_cast<float>(r1[i] - r0[i])) * Prototype::kDistanceUnit;
@@ -256,8 +271,8 @@ void correctedEnds(const DirectionLanes& d, std::size_t lanes, const std::int32_
     const float nearest_y = at_y[i] + static_cast<float>(rn[i]) * step_y[i];
     const float along_x = at_x[i] + r * d.ux[i];
     const float along_y = at_y[i] + r * d.uy[i];
-    x[i] = one_edge ? along_x : nearest_x;
-    y[i] = one_edge ? along_y : nearest_y;
+    x[i] = selectBits(one_edge, along_x, nearest_x);
+    y[i] = selectBits(one_edge, along_y, nearest_y);
     found[i] = (active[i] != 0) & (rn[i] != Prototype::kNoEdge);
   }
 }
