@@ -38,16 +38,20 @@ struct SignatureLogs
 };
 
 /// A pixel's log distances and validity over two turns, by phase: bin b
-/// at [b % 3][b / 3].
+/// at [b % 3][b / 3], for the phases the coarse pass reads (the offsets'
+/// bins mod 3: only phase 0 for the paper's, 9 k).
 struct PixelLogs
 {
   float log[kCoarseBinStep][kPhaseLength];
   std::int32_t valid[kCoarseBinStep][kPhaseLength];
-  explicit PixelLogs(const std::uint8_t* raw)
+  PixelLogs(const std::uint8_t* raw, const RayOffsets& offsets)
   {
     const std::array<float, 256>& logs = rawDistanceLogs();
+    bool read[kCoarseBinStep] = {false, false, false};
+    for (int k = 0; k < kFeatureRays; ++k)
+      read[offsets.bin[k] % kCoarseBinStep] = true;
     for (int phase = 0; phase < kCoarseBinStep; ++phase)
-      for (int c = 0; c < kCoarseBins; ++c)
+      for (int c = 0; c < kCoarseBins && read[phase]; ++c)
       {
         const std::uint8_t d = raw[c * kCoarseBinStep + phase];
         log[phase][c] = log[phase][c + kCoarseBins] = logs[d];
@@ -89,19 +93,20 @@ void coarseCosts(const PixelLogs& m, const SignatureLogs& v, const RayOffsets& o
 }
 
 /// headingCost of one heading bin, the same masked sums one ray at a time.
-float binCost(const PixelLogs& m, const SignatureLogs& v, const RayOffsets& offsets, int bin)
+float binCost(const std::uint8_t* raw, const SignatureLogs& v, const RayOffsets& offsets, int bin)
 {
+  const std::array<float, 256>& logs = rawDistanceLogs();
   float sum = 0.f, sum_sq = 0.f, both = 0.f, cost = 0.f;
   for (int k = 0; k < kFeatureRays; ++k)
   {
-    const int b = bin + offsets.bin[k];  // < 2 turns
-    const bool valid = m.valid[b % kCoarseBinStep][b / kCoarseBinStep] != 0;
+    const int b = bin + offsets.bin[k] < kDirectionBins ? bin + offsets.bin[k] : bin + offsets.bin[k] - kDirectionBins;
+    const bool valid = raw[b] != Prototype::kNoEdge;
     if (!v.valid[k])
     {
       cost += valid ? kHeadingMismatchPenalty : 0.f;
       continue;
     }
-    const float diff = valid ? m.log[b % kCoarseBinStep][b / kCoarseBinStep] - offsets.log_scale[k] - v.log[k] : 0.f;
+    const float diff = valid ? logs[raw[b]] - offsets.log_scale[k] - v.log[k] : 0.f;
     sum += diff;
     sum_sq += diff * diff;
     both += valid ? 1.f : 0.f;
@@ -115,7 +120,8 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
 {
   if (signature.valid_rays() < 3)
     return -1;
-  const PixelLogs m(prototype.rawDistances(x, y));
+  const std::uint8_t* raw = prototype.rawDistances(x, y);
+  const PixelLogs m(raw, offsets);
   const SignatureLogs v(signature);
   float cost[kCoarseBins];
   coarseCosts(m, v, offsets, cost);
@@ -132,7 +138,7 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
   for (int offset = 1 - kCoarseBinStep; offset < kCoarseBinStep; ++offset)
   {
     const int bin = (coarse + offset + kDirectionBins) % kDirectionBins;
-    const float c = offset == 0 ? best_cost : binCost(m, v, offsets, bin);
+    const float c = offset == 0 ? best_cost : binCost(raw, v, offsets, bin);
     if (c < best_cost)
     {
       best_cost = c;
