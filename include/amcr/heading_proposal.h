@@ -6,6 +6,8 @@
 // follow are still the likelihood of paper eq. 6.
 #pragma once
 
+#include <array>
+
 #include "amcr/corrected_scan.h"
 #include "amcr/particles.h"
 #include "amcr/prototype.h"
@@ -44,5 +46,17 @@ struct RayOffsets
 /// bestHeadingBin with the rays compared at `offsets`, so that an oblique
 /// view's M-particle starts aligned too; the same as the paper's for a
 /// frontal shape.
+/// It costs every bin at once (heading_search.cpp), with the result of
+/// bestHeadingBinReference.
 int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature, const RayOffsets& offsets);
+
+/// bestHeadingBin one heading cost at a time, as first written: the plain
+/// reference the fast one is tested against (test_update_loop.cpp).
+int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RaySignature& signature);
+int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RaySignature& signature,
+                            const RayOffsets& offsets);
+
+/// log of every raw table distance (units of Prototype::kDistanceUnit, at
+/// least 0.25 px), the values headingCost compares.
+const std::array<float, 256>& rawDistanceLogs();
 }  // namespace amcr

@@ -56,8 +56,18 @@ public:
   /// heading, with affine_refits re-estimates of A (default none: each one
   /// lets every hypothesis fit itself to what it sees, and the likelihood
   /// tells them apart less; README, "Oblique views").
+  /// The M-particles go through in blocks (observation_model_lanes.cpp),
+  /// with the same output as measureReference: bitwise on x86-64 with GCC,
+  /// within float rounding elsewhere (test_update_loop.cpp states the
+  /// tolerance); with affine_refits above 0, measure is measureReference.
   void measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
                std::size_t end) const;
+
+  /// The same update one M-particle at a time: the plain reference that the
+  /// block path of measure is tested against (test_update_loop.cpp), and the
+  /// path of affine_refits above 0.
+  void measureReference(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
+                        std::size_t end) const;
 
   /// log p(z_v | m) of eq. 6 over the 8 feature rays, for an M-particle at
   /// table pixel `at` and direction bin `bin` (raw: its table distances)
@@ -73,6 +83,11 @@ public:
                                const RelationalAffine& affine) const;
 
 private:
+  /// measure without refits: M-particles [begin, end), at most one block of
+  /// them (observation_model_lanes.cpp).
+  void measureBlock(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
+                    std::size_t end) const;
+
   /// Eq. 6 over v's feature rays; `table_end(k, x, y)` gives where table ray
   /// k ends (false: no edge).
   template <typename TableEnd>
@@ -85,6 +100,10 @@ private:
   float log_far_;
   float inv_step_;
   std::vector<float> table_;
+  /// For measure's lanes: (table_[i], table_[i + 1] - table_[i]) for each
+  /// cell i of table_, then (log_far_, 0) and (log p_invalid, 0), so that
+  /// every ray term is start + fraction * slope (fraction 0 for the last two).
+  std::vector<float> cell_start_slope_;
   float min_triangle_area_;
   float max_affine_scale_;
   DeviationSpace deviation_space_;

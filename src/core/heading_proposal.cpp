@@ -12,9 +12,9 @@ namespace amcr
 namespace
 {
 constexpr int kCoarseBinStep = 3;  // bins between the headings of the coarse pass
+}  // namespace
 
-/// log of every raw table value (distance in units of Prototype::kDistanceUnit).
-const std::array<float, 256>& logTable()
+const std::array<float, 256>& rawDistanceLogs()
 {
   static const std::array<float, 256> table = [] {
     std::array<float, 256> t{};
@@ -24,7 +24,6 @@ const std::array<float, 256>& logTable()
   }();
   return table;
 }
-}  // namespace
 
 namespace
 {
@@ -54,7 +53,7 @@ const RayOffsets& frontalOffsets()
 float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bool* v_valid,
                   const RayOffsets& offsets)
 {
-  const std::array<float, 256>& logs = logTable();
+  const std::array<float, 256>& logs = rawDistanceLogs();
   float sum = 0.f, sum_sq = 0.f, cost = 0.f;
   int both = 0;
   for (int k = 0; k < kFeatureRays; ++k)
@@ -113,7 +112,13 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
   return bestHeadingBin(prototype, x, y, signature, frontalOffsets());
 }
 
-int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature, const RayOffsets& offsets)
+int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RaySignature& signature)
+{
+  return bestHeadingBinReference(prototype, x, y, signature, frontalOffsets());
+}
+
+int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RaySignature& signature,
+                            const RayOffsets& offsets)
 {
   if (signature.valid_rays() < 3)
     return -1;

@@ -43,6 +43,9 @@ ObservationModel::ObservationModel(const Params& params)
   for (int i = 0; i < kTableEntries; ++i)
     table_[i] = static_cast<float>(logRay(std::sqrt(i * step)));
   log_far_ = static_cast<float>(logRay(1e6 * sigma_w_));
+  for (int i = 0; i + 1 < kTableEntries; ++i)
+    cell_start_slope_.insert(cell_start_slope_.end(), {table_[i], table_[i + 1] - table_[i]});
+  cell_start_slope_.insert(cell_start_slope_.end(), {log_far_, 0.f, static_cast<float>(log_invalid_), 0.f});
 }
 
 // Paper eq. 5: p(dw) = p_outlier + (1 - p_outlier) N(dw; 0, sigma_w^2); the
@@ -53,8 +56,8 @@ double ObservationModel::logRay(double dw) const
   return std::log(std::max(outlier_density_ + (1.0 - p_outlier_) * gauss, 1e-300));
 }
 
-void ObservationModel::measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
-                               std::size_t end) const
+void ObservationModel::measureReference(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m,
+                                        std::size_t begin, std::size_t end) const
 {
   const float all_invalid = kFeatureRays * static_cast<float>(log_invalid_);
   for (std::size_t i = begin; i < end; ++i)
