@@ -185,7 +185,9 @@ void expectSameParticle(const amcr::MParticleSet& fast, const amcr::MParticleSet
         << what << ", particle " << i << ", entry " << e;
   }
   if (kBitwise)
+  {
     ASSERT_TRUE(same) << what << ", particle " << i << ": not bitwise equal";
+  }
   bitwise_equal += same ? 1 : 0;
 }
 
@@ -259,7 +261,9 @@ TEST_F(UpdateLoop, MeasureEqualsMeasureReferenceOverASweep)
       EXPECT_GT(outcomes[o], 0) << describe(p) << ": outcome " << o << " never occurred";
     EXPECT_GE(outcomes[static_cast<int>(Outcome::kAccepted)], 10) << describe(p);
     if (kBitwise)
+    {
       EXPECT_EQ(bitwise_equal, compared) << describe(p);
+    }
   }
 }
 
@@ -310,7 +314,9 @@ TEST_F(UpdateLoop, MeasureEqualsMeasureReferenceWithAffineCorrectedLookups)
       EXPECT_GE(accepted, 1) << describe(p);
       EXPECT_GE(refused, 10) << describe(p);
       if (kBitwise)
+      {
         EXPECT_EQ(bitwise_equal, compared) << describe(p);
+      }
     }
 }
 
