@@ -51,7 +51,9 @@ struct Params
   // Prototype memory.
   int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]
   /// Directory of the cached lookup tables (table_cache.h), read when a
-  /// memory is loaded from a directory: "" = $ROS_HOME/amcr/tables, or
+  /// memory is loaded from a directory, and of the proposal index's k-d
+  /// tree (index_cache.h), read when a recognizer is built: "" =
+  /// $ROS_HOME/amcr/tables, or
   /// ~/.ros/amcr/tables when ROS_HOME is not set; "none" = no cache;
   /// otherwise an absolute path or one starting with "~/".
   std::string table_cache_dir;
