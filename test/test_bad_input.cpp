@@ -17,34 +17,13 @@
 #include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "scene_drawing.h"
+#include "warning_lines.h"
 
 namespace
 {
 using amcr_test::ShapeId;
 
-// Collects the warnings of PrototypeMemory::loadDirectory.
-struct Warnings
-{
-  std::vector<std::string> lines;
-  amcr::PrototypeMemory::WarningSink sink()
-  {
-    return [this](const std::string& line) { lines.push_back(line); };
-  }
-  bool mention(const std::string& text) const
-  {
-    for (const auto& l : lines)
-      if (l.find(text) != std::string::npos)
-        return true;
-    return false;
-  }
-  std::string all() const
-  {
-    std::string s;
-    for (const auto& l : lines)
-      s += "\n  " + l;
-    return s.empty() ? " (none)" : s;
-  }
-};
+using Warnings = amcr_test::WarningLines;
 
 void writeGarbage(const std::string& path)
 {

@@ -17,6 +17,7 @@
 #include "amcr/recognizer.h"
 #include "amcr/table_cache.h"
 #include "scene_drawing.h"
+#include "warning_lines.h"
 
 namespace
 {
@@ -24,21 +25,7 @@ namespace fs = std::filesystem;
 
 constexpr int kStride = 6;  // the default index_stride
 
-struct Warnings
-{
-  std::vector<std::string> lines;
-  amcr::ProposalIndex::WarningSink sink()
-  {
-    return [this](const std::string& line) { lines.push_back(line); };
-  }
-  bool mention(const std::string& text) const
-  {
-    for (const auto& l : lines)
-      if (l.find(text) != std::string::npos)
-        return true;
-    return false;
-  }
-};
+using Warnings = amcr_test::WarningLines;
 
 std::vector<fs::path> treeFiles(const std::string& directory)
 {

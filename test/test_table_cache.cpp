@@ -24,34 +24,14 @@
 #include "amcr/prototype_memory.h"
 #include "amcr/table_cache.h"
 #include "scene_drawing.h"
+#include "warning_lines.h"
 
 namespace
 {
 namespace fs = std::filesystem;
 using amcr_test::ShapeId;
 
-struct Warnings
-{
-  std::vector<std::string> lines;
-  amcr::PrototypeMemory::WarningSink sink()
-  {
-    return [this](const std::string& line) { lines.push_back(line); };
-  }
-  bool mention(const std::string& a, const std::string& b = "") const
-  {
-    for (const auto& l : lines)
-      if (l.find(a) != std::string::npos && l.find(b) != std::string::npos)
-        return true;
-    return false;
-  }
-  std::string all() const
-  {
-    std::string s;
-    for (const auto& l : lines)
-      s += "\n  " + l;
-    return s.empty() ? " (none)" : s;
-  }
-};
+using Warnings = amcr_test::WarningLines;
 
 /// A directory of drawn prototypes and a cache directory beside it.
 class TableCacheTest : public ::testing::Test

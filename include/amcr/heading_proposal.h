@@ -56,6 +56,15 @@ int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RayS
 int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RaySignature& signature,
                             const RayOffsets& offsets);
 
+/// A signature's log distances (at least 0.25 px) and validity, as the
+/// heading costs compare them.
+struct LogSignature
+{
+  float log[kFeatureRays];
+  bool valid[kFeatureRays];
+  explicit LogSignature(const RaySignature& signature);
+};
+
 /// log of every raw table distance (units of Prototype::kDistanceUnit, at
 /// least 0.25 px), the values headingCost compares.
 const std::array<float, 256>& rawDistanceLogs();

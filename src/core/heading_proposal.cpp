@@ -25,22 +25,17 @@ const std::array<float, 256>& rawDistanceLogs()
   return table;
 }
 
+LogSignature::LogSignature(const RaySignature& signature)
+{
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    valid[k] = signature.distance[k] > 0.f;
+    log[k] = valid[k] ? std::log(std::max(0.25f, signature.distance[k])) : 0.f;
+  }
+}
+
 namespace
 {
-/// The signature's log distances and validity.
-struct LogSignature
-{
-  float log[kFeatureRays];
-  bool valid[kFeatureRays];
-  explicit LogSignature(const RaySignature& signature)
-  {
-    for (int k = 0; k < kFeatureRays; ++k)
-    {
-      valid[k] = signature.distance[k] > 0.f;
-      log[k] = valid[k] ? std::log(std::max(0.25f, signature.distance[k])) : 0.f;
-    }
-  }
-};
 
 /// The paper's offsets: ray k at 9 k bins, no scale.
 const RayOffsets& frontalOffsets()

@@ -22,21 +22,6 @@ constexpr int kCoarseBinStep = 3;  // as in bestHeadingBinReference
 constexpr int kCoarseBins = kDirectionBins / kCoarseBinStep;
 constexpr int kPhaseLength = 2 * kCoarseBins;  // two turns of one phase (bin mod 3)
 
-/// The signature's log distances and validity, as headingCost takes them.
-struct SignatureLogs
-{
-  float log[kFeatureRays];
-  bool valid[kFeatureRays];
-  explicit SignatureLogs(const RaySignature& signature)
-  {
-    for (int k = 0; k < kFeatureRays; ++k)
-    {
-      valid[k] = signature.distance[k] > 0.f;
-      log[k] = valid[k] ? std::log(std::max(0.25f, signature.distance[k])) : 0.f;
-    }
-  }
-};
-
 /// A pixel's log distances and validity over two turns, by phase: bin b
 /// at [b % 3][b / 3], for the phases the coarse pass reads (the offsets'
 /// bins mod 3: only phase 0 for the paper's, 9 k).
@@ -61,7 +46,7 @@ struct PixelLogs
 };
 
 /// headingCost of the coarse headings 0, 3, 6, ... (lane c: bin 3 c).
-void coarseCosts(const PixelLogs& m, const SignatureLogs& v, const RayOffsets& offsets, float cost[kCoarseBins])
+void coarseCosts(const PixelLogs& m, const LogSignature& v, const RayOffsets& offsets, float cost[kCoarseBins])
 {
   float sum[kCoarseBins] = {}, sum_sq[kCoarseBins] = {}, both[kCoarseBins] = {};
   std::fill(cost, cost + kCoarseBins, 0.f);
@@ -93,7 +78,7 @@ void coarseCosts(const PixelLogs& m, const SignatureLogs& v, const RayOffsets& o
 }
 
 /// headingCost of one heading bin, the same masked sums one ray at a time.
-float binCost(const std::uint8_t* raw, const SignatureLogs& v, const RayOffsets& offsets, int bin)
+float binCost(const std::uint8_t* raw, const LogSignature& v, const RayOffsets& offsets, int bin)
 {
   const std::array<float, 256>& logs = rawDistanceLogs();
   float sum = 0.f, sum_sq = 0.f, both = 0.f, cost = 0.f;
@@ -122,7 +107,7 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
     return -1;
   const std::uint8_t* raw = prototype.rawDistances(x, y);
   const PixelLogs m(raw, offsets);
-  const SignatureLogs v(signature);
+  const LogSignature v(signature);
   float cost[kCoarseBins];
   coarseCosts(m, v, offsets, cost);
   // Coarse to fine, as bestHeadingBinReference: every third bin, then the bins around the best.
