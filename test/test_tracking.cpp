@@ -4,6 +4,7 @@
 // own affines and track ids; a frame budget that splits iterations over
 // frames; jumps in the sequence.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -242,33 +243,33 @@ TEST(SeveralObjects, TwoCopiesOfOneShapeAreTwoTracks)
 
 /// The frame budget on a clock of the test's own: every V-particle update
 /// costs `update_ms` of it (the exploration policy, called once per update,
-/// advances it) and nothing else takes time, so the budget's decisions are
-/// exact and need no calibration against the machine.
+/// counts the updates) and nothing else takes time, so the budget's
+/// decisions are exact and need no calibration against the machine. The
+/// count is atomic: the policy is called from every thread of an iteration.
 class CostedPolicy : public amcr::ExplorationPolicy
 {
 public:
-  CostedPolicy(const amcr::Params& p, std::shared_ptr<double> now, double update_ms)
-    : reflect_(p.v_step, p.reflection_jitter), now_(std::move(now)), update_ms_(update_ms)
+  CostedPolicy(const amcr::Params& p, std::shared_ptr<std::atomic<long>> updates)
+    : reflect_(p.v_step, p.reflection_jitter), updates_(std::move(updates))
   {
   }
   amcr::Control decide(const amcr::VParticle& v, const amcr::RadialScanner& scanner, amcr::Rng& rng) const override
   {
-    *now_ += update_ms_;
+    updates_->fetch_add(1);
     return reflect_.decide(v, scanner, rng);
   }
 
 private:
   amcr::ReflectAtEdgesPolicy reflect_;
-  std::shared_ptr<double> now_;
-  double update_ms_;
+  std::shared_ptr<std::atomic<long>> updates_;
 };
 
 /// Puts `recognizer` on a fake clock on which each V-particle update costs `update_ms`.
 void costUpdates(amcr::Recognizer& recognizer, double update_ms)
 {
-  const auto now = std::make_shared<double>(0.0);
-  recognizer.setClock([now] { return *now; });
-  recognizer.setPolicy(std::make_unique<CostedPolicy>(recognizer.params(), now, update_ms));
+  const auto updates = std::make_shared<std::atomic<long>>(0);
+  recognizer.setClock([updates, update_ms] { return static_cast<double>(updates->load()) * update_ms; });
+  recognizer.setPolicy(std::make_unique<CostedPolicy>(recognizer.params(), updates));
 }
 
 constexpr double kUpdateMs = 1.0;  // fake ms per V-particle update

@@ -8,7 +8,10 @@
 
 namespace amcr
 {
-/// Chooses the control of one V-particle from what it sees.
+/// Chooses the control of one V-particle from what it sees. decide() is
+/// called for several V-particles at once, from num_threads threads (each
+/// with the V-particle's own random stream): a policy that keeps state must
+/// make it safe to share.
 class ExplorationPolicy
 {
 public:
