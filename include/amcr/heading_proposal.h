@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 
 #include "amcr/corrected_scan.h"
 #include "amcr/particles.h"
@@ -68,4 +69,27 @@ struct LogSignature
 /// log of every raw table distance (units of Prototype::kDistanceUnit, at
 /// least 0.25 px), the values headingCost compares.
 const std::array<float, 256>& rawDistanceLogs();
+
+/// headingCost on a pixel's raw table distances (Prototype::rawDistances)
+/// with the feature rays at `offsets`: the one cost both heading searches
+/// use (bestHeadingBin's fine pass, bestHeadingBinReference). Masked sums,
+/// not branches: a ray not valid on both sides adds exactly 0 to them, as in
+/// the lanes of heading_search.cpp. Inline: it runs in the seeding's hot loop.
+inline float headingCost(const std::uint8_t* raw, int bin, const LogSignature& v, const RayOffsets& offsets)
+{
+  const std::array<float, 256>& logs = rawDistanceLogs();
+  float sum = 0.f, sum_sq = 0.f, both = 0.f, cost = 0.f;
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const std::uint8_t d = raw[(bin + offsets.bin[k]) % kDirectionBins];
+    const bool m_valid = d != Prototype::kNoEdge;
+    const bool compared = m_valid && v.valid[k];
+    const float diff = compared ? logs[d] - offsets.log_scale[k] - v.log[k] : 0.f;
+    sum += diff;
+    sum_sq += diff * diff;
+    both += compared ? 1.f : 0.f;
+    cost += m_valid != v.valid[k] ? kHeadingMismatchPenalty : 0.f;
+  }
+  return both > 0.f ? cost + sum_sq - sum * sum / both : cost;
+}
 }  // namespace amcr

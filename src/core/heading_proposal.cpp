@@ -43,38 +43,12 @@ const RayOffsets& frontalOffsets()
   static const RayOffsets offsets(kFrontalShape, 0.f);
   return offsets;
 }
-
-/// headingCost (heading_proposal.h) on the raw table distances of a pixel.
-float headingCost(const std::uint8_t* raw, int bin, const float* v_log, const bool* v_valid,
-                  const RayOffsets& offsets)
-{
-  const std::array<float, 256>& logs = rawDistanceLogs();
-  float sum = 0.f, sum_sq = 0.f, cost = 0.f;
-  int both = 0;
-  for (int k = 0; k < kFeatureRays; ++k)
-  {
-    const std::uint8_t d = raw[(bin + offsets.bin[k]) % kDirectionBins];
-    const bool m_valid = d != Prototype::kNoEdge;
-    if (m_valid != v_valid[k])
-    {
-      cost += kHeadingMismatchPenalty;
-      continue;
-    }
-    if (!m_valid)
-      continue;
-    const float diff = logs[d] - offsets.log_scale[k] - v_log[k];
-    sum += diff;
-    sum_sq += diff * diff;
-    ++both;
-  }
-  return both > 0 ? cost + sum_sq - sum * sum / both : cost;
-}
 }  // namespace
 
 float headingCost(const Prototype& prototype, int x, int y, const RaySignature& signature, int bin)
 {
   const LogSignature v(signature);
-  return headingCost(prototype.rawDistances(x, y), bin, v.log, v.valid, frontalOffsets());
+  return headingCost(prototype.rawDistances(x, y), bin, v, frontalOffsets());
 }
 
 RayOffsets::RayOffsets(const float shape[3], float v_heading)
@@ -118,15 +92,13 @@ int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RayS
   if (signature.valid_rays() < 3)
     return -1;
   const LogSignature v(signature);
-  const float* v_log = v.log;
-  const bool* v_valid = v.valid;
   const std::uint8_t* raw = prototype.rawDistances(x, y);
   // Coarse to fine: every third bin (15 degrees), then the bins around the best.
   int best_bin = 0;
   float best_cost = std::numeric_limits<float>::infinity();
   for (int bin = 0; bin < kDirectionBins; bin += kCoarseBinStep)
   {
-    const float cost = headingCost(raw, bin, v_log, v_valid, offsets);
+    const float cost = headingCost(raw, bin, v, offsets);
     if (cost < best_cost)
     {
       best_cost = cost;
@@ -137,7 +109,7 @@ int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RayS
   for (int offset = 1 - kCoarseBinStep; offset < kCoarseBinStep; ++offset)
   {
     const int bin = (coarse + offset + kDirectionBins) % kDirectionBins;
-    const float cost = offset == 0 ? best_cost : headingCost(raw, bin, v_log, v_valid, offsets);
+    const float cost = offset == 0 ? best_cost : headingCost(raw, bin, v, offsets);
     if (cost < best_cost)
     {
       best_cost = cost;

@@ -77,28 +77,6 @@ void coarseCosts(const PixelLogs& m, const LogSignature& v, const RayOffsets& of
     cost[c] = both[c] > 0.f ? cost[c] + sum_sq[c] - sum[c] * sum[c] / both[c] : cost[c];
 }
 
-/// headingCost of one heading bin, the same masked sums one ray at a time.
-float binCost(const std::uint8_t* raw, const LogSignature& v, const RayOffsets& offsets, int bin)
-{
-  const std::array<float, 256>& logs = rawDistanceLogs();
-  float sum = 0.f, sum_sq = 0.f, both = 0.f, cost = 0.f;
-  for (int k = 0; k < kFeatureRays; ++k)
-  {
-    const int b = bin + offsets.bin[k] < kDirectionBins ? bin + offsets.bin[k] : bin + offsets.bin[k] - kDirectionBins;
-    const bool valid = raw[b] != Prototype::kNoEdge;
-    if (!v.valid[k])
-    {
-      cost += valid ? kHeadingMismatchPenalty : 0.f;
-      continue;
-    }
-    const float diff = valid ? logs[raw[b]] - offsets.log_scale[k] - v.log[k] : 0.f;
-    sum += diff;
-    sum_sq += diff * diff;
-    both += valid ? 1.f : 0.f;
-    cost += valid ? 0.f : kHeadingMismatchPenalty;
-  }
-  return both > 0.f ? cost + sum_sq - sum * sum / both : cost;
-}
 }  // namespace
 
 int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature& signature, const RayOffsets& offsets)
@@ -123,7 +101,7 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
   for (int offset = 1 - kCoarseBinStep; offset < kCoarseBinStep; ++offset)
   {
     const int bin = (coarse + offset + kDirectionBins) % kDirectionBins;
-    const float c = offset == 0 ? best_cost : binCost(raw, v, offsets, bin);
+    const float c = offset == 0 ? best_cost : headingCost(raw, bin, v, offsets);
     if (c < best_cost)
     {
       best_cost = c;
