@@ -18,6 +18,9 @@ namespace amcr
 /// Cost of a feature ray valid on one side only, squared log units.
 constexpr float kHeadingMismatchPenalty = 0.5f;
 
+/// Bins between the headings of the searches' coarse pass (15 degrees).
+constexpr int kHeadingCoarseBinStep = 3;
+
 /// How badly the feature rays of direction bin `bin` at table pixel (x, y)
 /// of `prototype` match `signature`: the squared deviation of the
 /// log-distance differences from their mean (the mean absorbs the scale),
@@ -92,4 +95,9 @@ inline float headingCost(const std::uint8_t* raw, int bin, const LogSignature& v
   }
   return both > 0.f ? cost + sum_sq - sum * sum / both : cost;
 }
+/// The fine pass of both heading searches: of the bins within
+/// kHeadingCoarseBinStep - 1 of the coarse pass's choice `coarse` (whose
+/// cost is `coarse_cost`), the first of least headingCost.
+int fineHeadingBin(const std::uint8_t* raw, const LogSignature& v, const RayOffsets& offsets, int coarse,
+                   float coarse_cost);
 }  // namespace amcr

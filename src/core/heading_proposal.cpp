@@ -11,7 +11,6 @@ namespace amcr
 {
 namespace
 {
-constexpr int kCoarseBinStep = 3;  // bins between the headings of the coarse pass
 }  // namespace
 
 const std::array<float, 256>& rawDistanceLogs()
@@ -96,7 +95,7 @@ int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RayS
   // Coarse to fine: every third bin (15 degrees), then the bins around the best.
   int best_bin = 0;
   float best_cost = std::numeric_limits<float>::infinity();
-  for (int bin = 0; bin < kDirectionBins; bin += kCoarseBinStep)
+  for (int bin = 0; bin < kDirectionBins; bin += kHeadingCoarseBinStep)
   {
     const float cost = headingCost(raw, bin, v, offsets);
     if (cost < best_cost)
@@ -105,11 +104,20 @@ int bestHeadingBinReference(const Prototype& prototype, int x, int y, const RayS
       best_bin = bin;
     }
   }
-  const int coarse = best_bin;
-  for (int offset = 1 - kCoarseBinStep; offset < kCoarseBinStep; ++offset)
+  return fineHeadingBin(raw, v, offsets, best_bin, best_cost);
+}
+
+int fineHeadingBin(const std::uint8_t* raw, const LogSignature& v, const RayOffsets& offsets, int coarse,
+                   float coarse_cost)
+{
+  int best_bin = coarse;
+  float best_cost = coarse_cost;
+  for (int offset = 1 - kHeadingCoarseBinStep; offset < kHeadingCoarseBinStep; ++offset)
   {
+    if (offset == 0)
+      continue;
     const int bin = (coarse + offset + kDirectionBins) % kDirectionBins;
-    const float cost = offset == 0 ? best_cost : headingCost(raw, bin, v, offsets);
+    const float cost = headingCost(raw, bin, v, offsets);
     if (cost < best_cost)
     {
       best_cost = cost;

@@ -18,7 +18,7 @@ namespace amcr
 {
 namespace
 {
-constexpr int kCoarseBinStep = 3;  // as in bestHeadingBinReference
+constexpr int kCoarseBinStep = kHeadingCoarseBinStep;
 constexpr int kCoarseBins = kDirectionBins / kCoarseBinStep;
 constexpr int kPhaseLength = 2 * kCoarseBins;  // two turns of one phase (bin mod 3)
 
@@ -97,17 +97,6 @@ int bestHeadingBin(const Prototype& prototype, int x, int y, const RaySignature&
       best_cost = cost[c];
       best_bin = c * kCoarseBinStep;
     }
-  const int coarse = best_bin;
-  for (int offset = 1 - kCoarseBinStep; offset < kCoarseBinStep; ++offset)
-  {
-    const int bin = (coarse + offset + kDirectionBins) % kDirectionBins;
-    const float c = offset == 0 ? best_cost : headingCost(raw, bin, v, offsets);
-    if (c < best_cost)
-    {
-      best_cost = c;
-      best_bin = bin;
-    }
-  }
-  return best_bin;
+  return fineHeadingBin(raw, v, offsets, best_bin, best_cost);
 }
 }  // namespace amcr
