@@ -60,6 +60,11 @@ TEST(FuzzRegression, ParamFileOnWhichOpenCVNeverReturns)
   expectParameterErrorNamingTheFile(writeFile(dir, "tag.yaml", "%YAML:1.0\n---\n!p:\n  d: 2.0\nmyn-\nl: 3\n"));
   expectParameterErrorNamingTheFile(writeFile(dir, "anchor.yaml", "%YAML:1.0\n---\nsigma_w: &a 5\n"));
   expectParameterErrorNamingTheFile(writeFile(dir, "no_entry.yaml", "%YAML:1.0\n---\nsigma_w: 5\nmyn-\n"));
+  // An indented top-level map, then an indented "...--": OpenCV never returned (found by fuzzing).
+  expectParameterErrorNamingTheFile(writeFile(dir, "indented.yaml", " sigma_w: 2.0\n ...--\n  p_invalid: 0.5\n"));
+  const char found_indented[] = "%YAML:1.0\n dic: 2.0\n \x8b\x8b\x8b\x8b\xff" "c: 2.0\n ...--\n  ttriangle: 0.5\n"
+                                "miriangle:miriangle: 0.5\nmt: 3\n";
+  expectParameterErrorNamingTheFile(writeFile(dir, "indented_found.yaml", found_indented));
   // A marker alone on its line, with spaces or a comment after it, stays valid.
   const std::string valid = writeFile(dir, "valid.yaml", "%YAML:1.0\n---   # parameters\nsigma_w: 6\n");
   EXPECT_DOUBLE_EQ(amcr::loadParams(valid).sigma_w, 6.0);

@@ -191,10 +191,12 @@ void readEntry(const cv::FileNode& node, const std::vector<std::string>& lines, 
 
 /// The YAML that a parameter file may hold, checked line by line before
 /// OpenCV reads it, because OpenCV's YAML reader (4.6) never returns on some
-/// malformed files (found by fuzzing: "%YAML:1.0\n---s:0\n\")--\nr", and a
-/// tagged key "!name:" followed by a line "name-"). Allowed: the header on
-/// line 1; one document marker "---" alone on its line; top-level lines
-/// "name: value" or "name:" (a block map follows, indented) with a name of
+/// malformed files (found by fuzzing: "%YAML:1.0\n---s:0\n\")--\nr", a
+/// tagged key "!name:" followed by a line "name-", and an indented first
+/// entry followed by an indented "...--"). Allowed: the header on line 1; one
+/// document marker "---" alone on its line; a first entry that is not
+/// indented; top-level lines "name: value" or "name:" (a block map follows,
+/// indented) with a name of
 /// letters, digits and _, or a flow map "{...}"; indented lines of a map or a
 /// flow value. Refused: other directives, a second document, YAML tags,
 /// anchors, aliases and block scalars (!, &, *, |, >), and any other top-level
@@ -202,7 +204,8 @@ void readEntry(const cv::FileNode& node, const std::vector<std::string>& lines, 
 void checkLineForms(const std::vector<std::string>& lines, const std::string& yaml_path)
 {
   static const std::string kYamlOnlySigils = "!&*|>%@`";
-  bool started = false;
+  bool started = false;  // the document marker was seen
+  bool opened = false;   // an entry was seen
   for (std::size_t l = 0; l < lines.size(); ++l)
   {
     const std::string& line = lines[l];  // comments removed
@@ -219,6 +222,11 @@ void checkLineForms(const std::vector<std::string>& lines, const std::string& ya
       started = true;
       continue;
     }
+    // The top level starts at column 1: OpenCV never returned on an indented
+    // top-level map followed by an indented "...--" (found by fuzzing).
+    if (!opened && first != 0)
+      throw ParameterError(where + "the first entry must not be indented: '" + line + "'");
+    opened = true;
     const std::size_t colon = line.find(':', first);
     if (first == 0 && line[0] != '{')
     {
