@@ -11,8 +11,9 @@ Definitions (frames are numbered from 1):
 - held from: the first frame from which the top-1 stays correct to the last frame;
 - false positives per frame: reports whose label is not in view (every report in clutter-only);
 - affine error: mean distance (px) between the prototype's 4 corners mapped by the reported and by
-  the true prototype->image affine, over reports with a right label (not for within-class, where
-  the memory holds another instance than the one shown);
+  the true prototype->image affine, over reports with a right label (not for within-class,
+  within-class-1330 and within-class-85, where the memory holds other instances than the one shown:
+  the label is the class);
 - correspondence error: median distance (px) between a reported image point and the true image of
   its prototype point.
 - `oblique`: the same, and top-1 split by the sequence's anisotropy (1.5-2, 2-2.5, 2.5-3).
@@ -58,8 +59,10 @@ import cv2
 import numpy as np
 
 METHODS = ["amcr", "orb", "hu", "ght"]
-SUITES = ["paper", "mpeg7-70", "within-class", "similar", "clutter-only", "two-objects", "copies", "real-photos",
-          "oblique", "real-camera", "paper-hd", "clutter-only-hd"]
+SUITES = ["paper", "mpeg7-70", "within-class", "within-class-1330", "within-class-85", "similar", "clutter-only",
+          "two-objects", "copies", "real-photos", "oblique", "real-camera", "paper-hd", "clutter-only-hd"]
+# The shown instance is in no memory (the label is the class): no affine or correspondence error.
+WITHIN_CLASS_SUITES = ["within-class", "within-class-1330", "within-class-85"]
 GROWTH = "memory-growth"
 HD_PAIRS = [("paper", "paper-hd"), ("clutter-only", "clutter-only-hd")]  # 640x480 suite, its 1280x720 one
 GROWTH_AIM = 1.5  # issue 14: time per frame with 70 prototypes at most 1.5x that with 3
@@ -305,7 +308,7 @@ def suite_metrics(out, suite, methods, res_dir=None):
         with open(path) as f:
             truths[os.path.basename(os.path.dirname(path))] = json.load(f)
     has_target = any(t["frames"][0]["objects"] for t in truths.values())
-    geometry = suite != "within-class"
+    geometry = suite not in WITHIN_CLASS_SUITES
 
     metrics = {}
     for method in methods:
@@ -604,7 +607,7 @@ def suite_table(suite, metrics, has_target):
         row("share with a held correct decision", lambda m: m.get("held_share"), "pct")
         row("median frames to the held correct decision", lambda m: m.get("held_median"), "frames")
     row("false positives per frame", lambda m: m["fp_per_frame"], "")
-    if has_target and suite != "within-class":
+    if has_target and suite not in WITHIN_CLASS_SUITES:
         row("affine corner error, median over frames (px)", lambda m: m["affine_median"], "px")
         row("affine corner error at the last frame, median (px)", lambda m: m["affine_last_median"], "px")
         row("correspondence error, median (px)", lambda m: m["corr_median"], "px")
@@ -721,7 +724,12 @@ classes not in memory (random polygons, ellipses and crosses in the 70-class sui
 class is in memory), 3-6 lines, a lighting gradient (10-35%), blur (sigma 0-1.2) and noise
 (sigma 2-8). `paper`: 17 classes in memory (every 4th class in name order, instance 1), the same
 instance shown; `mpeg7-70`: all 70 classes; `within-class`: memory instance 1 of all 70 classes,
-another instance shown; `similar`: the 3 birds closest in Hu moments; `clutter-only`: the paper
+another instance shown; `within-class-1330`: memory the 19 instances of each of the 70 classes
+other than one held out per class (drawn once, whatever the seed), the held-out instance shown,
+label the class; the `within-class` sequences (same seeds and draws: background, pose, motion,
+clutter, noise) with the memory and the shown instance changed only; `within-class-85`: memory 5
+of those 19 instances for each of the paper's 17 classes, the held-out instance of one of them
+shown (seeds of its own; distractors of classes not in memory); `similar`: the 3 birds closest in Hu moments; `clutter-only`: the paper
 memory, no memory shape in view; `two-objects`: two of the paper memory at once, in the two
 halves of the frame. `oblique`: the `paper` sequences (same seeds, memory, clutter, motion) with
 the target seen obliquely: squashed along an image axis (random per sequence) to anisotropy
