@@ -5,7 +5,9 @@
 //                 [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N] [--prototypes DIR]
 //
 // The memory is <suite>/prototypes unless --prototypes names another folder (the `memory-growth`
-// suite runs the same sequences once per memory, prototypes-3 ... prototypes-70).
+// suite runs the same sequences once per memory, prototypes-3 ... prototypes-70). For the baselines,
+// the folder holds loose .png files (label: the file name) and/or one sub-directory per label, each
+// .png in it an instance of that label (`within-class-1330`, `within-class-85`).
 //
 // Writes <out>/<sequence>.<method>.jsonl, one line per frame run:
 //   {"frame": k, "time_ms": t, "objects": [{"label": ..., "score": s,
@@ -26,6 +28,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core/utility.hpp>
@@ -111,16 +114,28 @@ Options parse(int argc, char** argv)
   return o;
 }
 
+// The memory of a prototype folder: its loose .png files (label: the file name without extension)
+// and, one level down, one sub-directory per label (label: the sub-directory's name), every .png in
+// it an instance of that label. Sorted by path.
 std::vector<PrototypeImage> loadPrototypes(const std::string& dir)
 {
-  std::vector<std::string> files;
+  std::vector<std::pair<std::string, std::string>> files;  // (path, label)
   for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == ".png")
-      files.push_back(entry.path().string());
+  {
+    if (entry.is_directory())
+    {
+      const std::string label = entry.path().filename().string();
+      for (const auto& inner : fs::directory_iterator(entry.path()))
+        if (inner.is_regular_file() && inner.path().extension() == ".png")
+          files.emplace_back(inner.path().string(), label);
+    }
+    else if (entry.path().extension() == ".png")
+      files.emplace_back(entry.path().string(), entry.path().stem().string());
+  }
   std::sort(files.begin(), files.end());
   std::vector<PrototypeImage> prototypes;
-  for (const std::string& f : files)
-    prototypes.push_back({fs::path(f).stem().string(), cv::imread(f, cv::IMREAD_GRAYSCALE)});
+  for (const auto& [path, label] : files)
+    prototypes.push_back({label, cv::imread(path, cv::IMREAD_GRAYSCALE)});
   return prototypes;
 }
 
