@@ -2,7 +2,9 @@
 """Tests of the issue-14 suites of bench/make_sequences: the `memory-growth` memories (nested, each
 holding every target) and the 1280x720 suites (`paper-hd`: the `paper` frames and truth, scaled);
 of the issue-15 suites (`copies`: apart and where the truth says; `real-photos`: the six parts of
-pca_test1 where the truth says) and of bench/report.py's instance matching.
+pca_test1 where the truth says); of the several-instance memories (`within-class-1330`,
+`within-class-85`: the held-out instance in no memory, shown, and the `within-class` frames elsewhere)
+and of bench/report.py's instance matching.
 Needs the MPEG-7 silhouettes (AMCR_DATA, default ../shared/data from the checkout) and opencv-doc's
 photos; skips with a message without them.
 
@@ -52,6 +54,7 @@ class SeedIndex(unittest.TestCase):
                           "within-class": 5, "oblique": 6, "real-camera": 7})
         self.assertEqual([ms.SEED_INDEX[s] for s in ["memory-growth", "paper-hd", "clutter-only-hd", "copies",
                                                       "real-photos"]], [8, 9, 10, 11, 12])
+        self.assertEqual([ms.SEED_INDEX[s] for s in ["within-class-1330", "within-class-85"]], [13, 14])
         self.assertEqual(len(set(ms.SEED_INDEX.values())), len(ms.SEED_INDEX))
         self.assertEqual(set(ms.SEED_INDEX), set(ms.SUITES))
 
@@ -140,6 +143,90 @@ class Suites(unittest.TestCase):
             ring = (cv2.dilate(shape.astype(np.uint8), disc(9)) > 0) & ~anywhere
             contrast = float(np.median(grey[ring])) - float(np.median(grey[inside]))
             self.assertGreater(-contrast if inverted else contrast, 25.0, "copy %d" % i)
+
+
+@unittest.skipUnless(HAVE_DATA, "no MPEG-7 silhouettes in %s (set AMCR_DATA) or no opencv-doc photos" % MPEG7)
+class HeldOut(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.classes = ms.mpeg7_classes(MPEG7)
+        cls.held, cls.five = ms.holdout_instances(cls.classes)
+
+    def written(self, kind):
+        """The memory `kind` as main writes it: label -> sorted file names of its sub-directory."""
+        with tempfile.TemporaryDirectory() as tmp:
+            ms.write_memory(tmp, ms.memory_of(kind, self.classes, MPEG7))
+            self.assertEqual([f for f in os.listdir(tmp) if not os.path.isdir(os.path.join(tmp, f))], [])
+            return {d: sorted(os.listdir(os.path.join(tmp, d))) for d in os.listdir(tmp)}
+
+    def test_held_out_fixed_one_per_class(self):
+        self.assertEqual(sorted(self.held), self.classes)
+        self.assertTrue(all(1 <= n <= 20 for n in self.held.values()))
+        self.assertEqual((self.held, self.five), ms.holdout_instances(self.classes))  # fixed, not drawn anew
+
+    def test_memory_1330_holds_19_per_class_none_held_out(self):
+        memory = self.written("all70x19")
+        self.assertEqual(sorted(memory), self.classes)
+        for cls, files in memory.items():
+            self.assertEqual(len(files), 19, cls)
+            self.assertNotIn(ms.instance_name(cls, self.held[cls]) + ".png", files)
+            self.assertEqual(set(files), {"%s-%d.png" % (cls, n) for n in range(1, 21) if n != self.held[cls]})
+
+    def test_memory_85_holds_5_of_the_paper_classes_none_held_out(self):
+        memory = self.written("paper17x5")
+        self.assertEqual(sorted(memory), sorted(ms.paper_classes(self.classes)))
+        for cls, files in memory.items():
+            self.assertEqual(len(files), 5, cls)
+            self.assertNotIn(ms.instance_name(cls, self.held[cls]) + ".png", files)
+            self.assertEqual(files, sorted("%s-%d.png" % (cls, n) for n in self.five[cls]))
+
+    def test_1330_shows_the_held_out_instance_over_the_within_class_frames(self):
+        frames, truths = {}, {}
+        with tempfile.TemporaryDirectory() as tmp:
+            for suite, kind in (("within-class", "all70"), ("within-class-1330", "all70x19")):
+                memory = ms.memory_of(kind, self.classes, MPEG7)
+                truths[suite] = render_truth(tmp, suite, suite, 1, ms.SUITES[suite], memory, self.classes, 2)
+                frames[suite] = [cv2.imread(os.path.join(tmp, suite, "frames", "frame_%04d.png" % k),
+                                            cv2.IMREAD_GRAYSCALE).astype(int) for k in range(2)]
+        old, new = truths["within-class"], truths["within-class-1330"]
+        label = new["targets"][0]["label"]
+        self.assertEqual(label, old["targets"][0]["label"])  # the same class, the class as label
+        held_file = ms.mpeg7_file(label, self.held[label])
+        self.assertEqual(new["targets"][0]["source"], os.path.basename(held_file))
+        held = cv2.imread(held_file, cv2.IMREAD_GRAYSCALE)
+        self.assertEqual(new["prototype_sizes"], {label: list(held.shape[::-1])})
+        for key in ("inverted", "blur_sigma", "noise_sigma", "distractors"):
+            self.assertEqual(old[key], new[key], key)
+        shown = cv2.imread(os.path.join(MPEG7, old["targets"][0]["source"]), cv2.IMREAD_GRAYSCALE)
+        disc = lambda r: cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * r + 1, 2 * r + 1))
+        for k in range(2):
+            [o_old], [o_new] = old["frames"][k]["objects"], new["frames"][k]["objects"]
+            self.assertEqual(o_new["label"], label)
+            place = lambda mask, o: cv2.warpAffine(mask, np.asarray(o["prototype_to_image"]), (ms.WIDTH, ms.HEIGHT),
+                                                   flags=cv2.INTER_NEAREST) > 127
+            target_new, target_old = place(held, o_new), place(shown, o_old)
+            # Elsewhere than the two targets (and the blur's reach around them), the same pixels.
+            near = cv2.dilate((target_new | target_old).astype(np.uint8), disc(7)) > 0
+            differ = frames["within-class"][k] != frames["within-class-1330"][k]
+            self.assertFalse(np.any(differ & ~near), "frame %d differs away from the targets" % k)
+            self.assertTrue(np.any(differ), "frame %d: the same target" % k)
+            # The held-out instance is printed where the truth says: its ink against a ring around it.
+            grey = frames["within-class-1330"][k]
+            inside = cv2.erode(target_new.astype(np.uint8), disc(2)) > 0
+            ring = (cv2.dilate(target_new.astype(np.uint8), disc(9)) > 0) & \
+                ~(cv2.dilate(target_new.astype(np.uint8), disc(3)) > 0)
+            contrast = float(np.median(grey[ring])) - float(np.median(grey[inside]))
+            self.assertGreater(-contrast if new["inverted"] else contrast, 25.0, "frame %d" % k)
+
+    def test_85_shows_a_held_out_instance_of_a_paper_class(self):
+        spec = ms.SUITES["within-class-85"]
+        memory = ms.memory_of(spec["memory"], self.classes, MPEG7)
+        with tempfile.TemporaryDirectory() as tmp:
+            truth = render_truth(tmp, "seq_000", "within-class-85", 0, spec, memory, self.classes, 1)
+        [target] = truth["targets"]
+        self.assertIn(target["label"], memory)
+        self.assertEqual(target["source"], os.path.basename(ms.mpeg7_file(target["label"], self.held[target["label"]])))
+        self.assertEqual([o["label"] for o in truth["frames"][0]["objects"]], [target["label"]])
 
 
 PHOTO = os.path.join(ms.PHOTO_DIR, ms.PART_PHOTOS[0][0])
