@@ -105,6 +105,7 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   result.time_ms = 3.14159;  // the core's measurement is the one written
   amcr::RecognizedObject object;
   object.label = "bird \"1\"";
+  object.instance = "bird \"1\"/bird-3.png";
   object.prototype_id = 2;
   object.track_id = 4;
   object.state = amcr::ObjectState::kHeld;
@@ -125,7 +126,7 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   EXPECT_EQ(line.find('\n'), std::string::npos);
   EXPECT_EQ(line,
             "{\"frame\": 3, \"time_ms\": 3.142, \"iteration\": 7, \"iterations\": 0.500, \"mean_m_particles\": 412.3, "
-            "\"objects\": [{\"label\": \"bird \\\"1\\\"\", "
+            "\"objects\": [{\"label\": \"bird \\\"1\\\"\", \"instance\": \"bird \\\"1\\\"/bird-3.png\", "
             "\"track_id\": 4, \"state\": \"held\", \"score\": 0.9300, \"support\": 17, "
             "\"image_to_prototype\": [[0.500000, 0.000000, -10.000000], [0.000000, 0.500000, null]], "
             "\"prototype_to_image\": [[2.000000, 0.000000, 20.000000], [0.000000, 2.000000, 0.000000]], "

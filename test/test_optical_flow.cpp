@@ -95,6 +95,7 @@ amcr::RecognizedObject objectAt(int prototype, const amcr::Affine& pose)
 {
   amcr::RecognizedObject o;
   o.prototype_id = prototype;
+  o.label = "shape " + std::to_string(prototype);  // one label per prototype
   o.prototype_to_image = pose;
   o.outline = amcr_test::transformPoints(pose, amcr_test::shapePolygon(ShapeId::kStar));
   return o;

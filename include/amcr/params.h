@@ -50,6 +50,10 @@ struct Params
 
   // Prototype memory.
   int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]
+  /// Spacing of the lookup tables' nodes, table px [1, 4]: 1 = a scan at
+  /// every pixel (exact lookups); s = one per s x s block, s^2 times less
+  /// memory and build time (Prototype(); README, "Compact tables").
+  int table_stride = 1;
   /// Directory of the cached lookup tables (table_cache.h), read when a
   /// memory is loaded from a directory, and of the proposal index's k-d
   /// tree (index_cache.h), read when a recognizer is built: "" =
@@ -125,8 +129,9 @@ struct Params
   int num_threads = 0;
 
   /// Context prior over the memory (paper 3.6, "context"): label -> weight
-  /// of the prototype in the initial and re-seeded M-particles. Labels not
-  /// listed weigh 1; weight 0 removes a prototype from the filter.
+  /// of the label in the initial and re-seeded M-particles, shared equally
+  /// among the label's instances. Labels not listed weigh 1; weight 0
+  /// removes a label (all its instances) from the filter.
   std::map<std::string, double> prototype_priors;
 
   std::uint64_t seed = 0;  ///< seed of the recognizer's random generator

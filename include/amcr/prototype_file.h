@@ -22,12 +22,13 @@ struct LoadedPrototype
   std::vector<std::string> warnings;           ///< each naming the file and the reason
 };
 
-/// Reads the image file at `path` and gives the prototype `label`: from
+/// Reads the image file at `path` and gives the prototype `label` (as
+/// `instance` of it, "" = the label): from
 /// `cache` when it holds a sound table for these bytes and parameters,
 /// otherwise built (and then stored in `cache`). An unreadable file or an
 /// image with no shape leaves `prototype` null with a warning; a cache file
 /// that is refused, or cannot be written, gives a warning and a built table.
 /// Thread-safe; never throws for a bad file.
 LoadedPrototype loadPrototypeFile(const std::string& path, const std::string& label, const Params& params,
-                                  const TableCache& cache);
+                                  const TableCache& cache, const std::string& instance = std::string());
 }  // namespace amcr

@@ -22,28 +22,43 @@ public:
 
   PrototypeMemory() = default;
 
-  /// Loads every image file of `directory` (sorted by name; label = file name
-  /// without extension). Unreadable files and images with no shape are
-  /// skipped with a warning naming the file. The tables are built on
+  /// Loads every image file of `directory`: loose files (label = file name
+  /// without extension) and label directories (label = the directory's
+  /// name, each file in it an instance of it; prototype_directory.h),
+  /// sorted by label, then instance. Unreadable files, images with no
+  /// shape, empty label directories and labels taken twice are skipped with
+  /// a warning naming the file. The tables are built on
   /// OpenCV's threads (cv::parallel_for_), or read from the table cache
   /// params.table_cache_dir names (table_cache.h); a cache file that is
   /// refused, or a cache that cannot be used, is a warning too. The memory
   /// is the same whatever the thread count and whatever came from the
   /// cache. Throws MemoryError when the directory is missing, empty, or no
-  /// prototype is left.
+  /// prototype is left. A load that takes more than a few seconds sends a
+  /// progress line to `progress` every few seconds (files done, built, read
+  /// from the cache; called from the loading threads, one at a time).
   static PrototypeMemory loadDirectory(const std::string& directory, const Params& params,
-                                       const WarningSink& warn = WarningSink());
+                                       const WarningSink& warn = WarningSink(),
+                                       const WarningSink& progress = WarningSink());
 
-  /// Adds one prototype from an image in memory. Throws MemoryError when it
-  /// holds no shape, or when the label is already taken.
-  void add(const std::string& label, const cv::Mat& image, const Params& params);
+  /// Adds one prototype from an image in memory. With no `instance`, a new
+  /// label (MemoryError when the label is taken; the instance is the
+  /// label); with one, an instance of `label`, new or not (MemoryError when
+  /// the instance is taken). MemoryError too when the image holds no shape.
+  void add(const std::string& label, const cv::Mat& image, const Params& params,
+           const std::string& instance = std::string());
 
   std::size_t size() const { return prototypes_.size(); }
   bool empty() const { return prototypes_.empty(); }
   const Prototype& operator[](std::size_t i) const { return *prototypes_[i]; }
 
-  /// Index of a label, or -1.
+  /// Index of the first prototype of a label, or -1.
   int find(const std::string& label) const;
+  /// Index of the prototype of an instance (Prototype::instance()), or -1.
+  int findInstance(const std::string& instance) const;
+  /// The prototypes of a label, in memory order (empty for an unknown label).
+  std::vector<int> instancesOf(const std::string& label) const;
+  /// The distinct labels, in memory order.
+  const std::vector<std::string>& labels() const { return labels_; }
 
   /// Memory held by all lookup tables, bytes.
   std::size_t tableBytes() const;
@@ -56,6 +71,7 @@ private:
   void append(std::shared_ptr<const Prototype> prototype);
 
   std::vector<std::shared_ptr<const Prototype>> prototypes_;
+  std::vector<std::string> labels_;
   TableCacheCounts cache_counts_;
 };
 }  // namespace amcr

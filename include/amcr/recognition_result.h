@@ -34,8 +34,9 @@ std::string toString(ObjectState state);
 
 struct RecognizedObject
 {
-  std::string label;
-  int prototype_id = -1;  ///< index into the memory
+  std::string label;       ///< what the object is (Prototype::label())
+  std::string instance;    ///< which of the label's prototypes matched (Prototype::instance())
+  int prototype_id = -1;  ///< index into the memory, of that instance
   int track_id = 0;       ///< stable while the object stays recognized, never reused in a run
   ObjectState state = ObjectState::kTentative;  ///< where the object is in its life cycle
   /// Share of the prototype's outline found on image edges after the fit

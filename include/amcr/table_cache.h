@@ -27,7 +27,7 @@ namespace amcr
 {
 /// Changes whenever the table code or the payload layout changes, so that
 /// files of an older build are rebuilt, not read.
-constexpr std::uint32_t kTableFormatVersion = 1;
+constexpr std::uint32_t kTableFormatVersion = 2;  // 2: the table stride (issue 17)
 
 /// The directory Params::table_cache_dir names, "~/" expanded: "" (the
 /// default) is $ROS_HOME/amcr/tables, or $HOME/.ros/amcr/tables when
@@ -37,7 +37,8 @@ constexpr std::uint32_t kTableFormatVersion = 1;
 std::string tableCacheDirectory(const std::string& setting, std::string* why_off = nullptr);
 
 /// The key of a table: the hash of the image file's bytes, the parameters
-/// the table is built with (prototype_size, edge_threshold, blur_sigma), the
+/// the table is built with (prototype_size, edge_threshold, blur_sigma,
+/// table_stride), the
 /// table's constants (direction bins, distance unit, "no edge" value),
 /// kTableFormatVersion and the OpenCV version (whose resize, distance
 /// transform and blur make the table).
@@ -78,8 +79,10 @@ public:
   std::string path(const std::string& label, std::uint64_t image_hash) const;
 
   /// The prototype in the file, when the file holds a table with `key`
-  /// whose checksum matches. Safe to call from several threads.
-  Found read(const std::string& label, std::uint64_t image_hash, std::uint64_t key) const;
+  /// whose checksum matches, as `instance` of `label` ("" = the label).
+  /// Safe to call from several threads.
+  Found read(const std::string& label, std::uint64_t image_hash, std::uint64_t key,
+             const std::string& instance = std::string()) const;
 
   /// Writes the prototype's file under a temporary name, then renames it;
   /// returns why it could not ("" when written). Safe to call from several

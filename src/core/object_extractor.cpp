@@ -76,6 +76,7 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   candidate.table_to_image = table_to_image;
   RecognizedObject& object = candidate.object;
   object.label = p.label();
+  object.instance = p.instance();
   object.prototype_id = prototype;
   for (const auto& o : p.outline())
     object.outline.push_back(toImage(cv::Point2d(o.position)));

@@ -47,6 +47,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_INT(index_stride, "prototype px", 1, 64, "distance between the indexed points of a prototype"),
       AMCR_INT(index_candidates, "", 1, 1000, "places of the memory a V-particle's query returns"),
       AMCR_INT(prototype_size, "px", 32, 512, "longer side of a prototype in its lookup table"),
+      AMCR_INT(table_stride, "table px", 1, 4, "spacing of the lookup table's nodes; 1 = every pixel (exact), s = one per s x s block (s^2 less memory and build time)"),
       AMCR_DOUBLE(max_ray_length, "working px", 10, 4000, "longest radial scan in the working image"),
       AMCR_DOUBLE(edge_threshold, "grey levels", 1, 255, "step over 2 px that counts as an edge"),
       AMCR_DOUBLE(blur_sigma, "working px", 0, 10, "Gaussian smoothing of the working image before scanning"),

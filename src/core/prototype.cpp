@@ -40,13 +40,16 @@ cv::Mat silhouetteMask(const cv::Mat& grey)
 }  // namespace
 
 Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, double edge_threshold,
-                     double blur_sigma)
-  : blur_sigma_(blur_sigma), label_(label)
+                     double blur_sigma, int table_stride, const std::string& instance)
+  : blur_sigma_(blur_sigma), stride_(table_stride), label_(label), instance_(instance.empty() ? label : instance)
 {
   if (image.empty())
     throw MemoryError("prototype '" + label + "': the image is empty");
   if (size < 8)
     throw ParameterError("parameter 'prototype_size' = " + std::to_string(size) + " is below 8 px");
+  if (table_stride < 1 || table_stride > kMaxTableStride)
+    throw ParameterError("parameter 'table_stride' = " + std::to_string(table_stride) + " is outside [1, " +
+                         std::to_string(kMaxTableStride) + "]");
   cv::Mat grey;
   try
   {
@@ -97,10 +100,16 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
 
 cv::Mat Prototype::scanImage() const { return prepareScanImage(mask_, blur_sigma_); }
 
-// Paper 4.4: every pixel holds its radial scan in every direction bin, made
-// by the scanner the V-particles use, in the smoothed mask: a lookup equals a
-// direct scan. Far from the outline the smoothed mask is flat, so each ray
-// leaps over the free space a distance transform gives.
+void Prototype::sizeNodes()
+{
+  node_cols_ = (mask_.cols + stride_ - 1) / stride_;
+  node_rows_ = (mask_.rows + stride_ - 1) / stride_;
+}
+
+// Paper 4.4: every node holds its radial scan in every direction bin, made
+// by the scanner the V-particles use, in the smoothed mask: with stride 1 a
+// lookup equals a direct scan. Far from the outline the smoothed mask is
+// flat, so each ray leaps over the free space a distance transform gives.
 void Prototype::buildTable(double edge_threshold)
 {
   const int cols = mask_.cols, rows = mask_.rows;
@@ -120,21 +129,26 @@ void Prototype::buildTable(double edge_threshold)
 
   const cv::Mat scan_image = scanImage();
   const RadialScanner scanner(scan_image, edge_threshold, kMaxTableDistance + 2.f, free_space);
-  table_.assign(static_cast<std::size_t>(mask_.total()) * kDirectionBins, kNoEdge);
+  sizeNodes();
+  table_.assign(static_cast<std::size_t>(node_cols_) * node_rows_ * kDirectionBins, kNoEdge);
+  // A node sits at the centre of its stride x stride block of pixels.
+  const float node_offset = 0.5f * static_cast<float>(stride_ - 1);
   float dir_x[kDirectionBins], dir_y[kDirectionBins];
   for (int b = 0; b < kDirectionBins; ++b)
   {
     dir_x[b] = static_cast<float>(std::cos(binToAngle(b)));
     dir_y[b] = static_cast<float>(std::sin(binToAngle(b)));
   }
-  cv::parallel_for_(cv::Range(0, rows), [&](const cv::Range& range) {
-    for (int y = range.start; y < range.end; ++y)
-      for (int x = 0; x < cols; ++x)
+  cv::parallel_for_(cv::Range(0, node_rows_), [&](const cv::Range& range) {
+    for (int j = range.start; j < range.end; ++j)
+      for (int i = 0; i < node_cols_; ++i)
       {
-        std::uint8_t* cell = &table_[(static_cast<std::size_t>(y) * cols + x) * kDirectionBins];
+        std::uint8_t* cell = &table_[(static_cast<std::size_t>(j) * node_cols_ + i) * kDirectionBins];
+        const float x = std::min(static_cast<float>(cols - 1), static_cast<float>(i * stride_) + node_offset);
+        const float y = std::min(static_cast<float>(rows - 1), static_cast<float>(j * stride_) + node_offset);
         for (int b = 0; b < kDirectionBins; ++b)
         {
-          const RayHit hit = scanner.scan(static_cast<float>(x), static_cast<float>(y), dir_x[b], dir_y[b]);
+          const RayHit hit = scanner.scan(x, y, dir_x[b], dir_y[b]);
           if (hit.valid && hit.distance <= kMaxTableDistance)
             cell[b] = static_cast<std::uint8_t>(std::lround(hit.distance / kDistanceUnit));
         }

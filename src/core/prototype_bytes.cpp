@@ -91,6 +91,7 @@ std::vector<std::uint8_t> Prototype::toBytes() const
   out.put<std::int32_t>(original_size_.width);
   out.put<std::int32_t>(original_size_.height);
   out.put(blur_sigma_);
+  out.put<std::int32_t>(stride_);
   out.put<std::int32_t>(mask_.cols);
   out.put<std::int32_t>(mask_.rows);
   const cv::Mat mask = mask_.isContinuous() ? mask_ : mask_.clone();
@@ -117,14 +118,18 @@ std::vector<std::uint8_t> Prototype::toBytes() const
 }
 
 std::shared_ptr<const Prototype> Prototype::fromBytes(const std::string& label, const std::uint8_t* data,
-                                                      std::size_t size)
+                                                      std::size_t size, const std::string& instance)
 {
   ByteReader in(data, size);
   std::shared_ptr<Prototype> p(new Prototype());
   p->label_ = label;
+  p->instance_ = instance.empty() ? label : instance;
   p->original_size_.width = in.get<std::int32_t>("the original size");
   p->original_size_.height = in.get<std::int32_t>("the original size");
   p->blur_sigma_ = in.get<double>("the blur");
+  p->stride_ = in.get<std::int32_t>("the table stride");
+  if (p->stride_ < 1 || p->stride_ > kMaxTableStride)
+    throw MemoryError("a table stride of " + std::to_string(p->stride_));
   const auto cols = in.get<std::int32_t>("the table size");
   const auto rows = in.get<std::int32_t>("the table size");
   if (cols < 1 || rows < 1 || cols > kLargestSide || rows > kLargestSide)
@@ -133,10 +138,11 @@ std::shared_ptr<const Prototype> Prototype::fromBytes(const std::string& label, 
   in.getBytes(p->mask_.data, p->mask_.total(), "the mask");
   p->original_to_table_ = getMatx(in, "the affine to the table");
   p->table_to_original_ = getMatx(in, "the affine from the table");
+  p->sizeNodes();
   const std::size_t table_size = in.count(1, "the table");
-  if (table_size != p->mask_.total() * kDirectionBins)
+  if (table_size != static_cast<std::size_t>(p->node_cols_) * p->node_rows_ * kDirectionBins)
     throw MemoryError("a table of " + std::to_string(table_size) + " bytes for " + std::to_string(cols) + " x " +
-                      std::to_string(rows) + " px");
+                      std::to_string(rows) + " px at stride " + std::to_string(p->stride_));
   p->table_.resize(table_size);
   in.getBytes(p->table_.data(), table_size, "the table");
   p->interior_.resize(in.count(8, "the interior"));

@@ -7,7 +7,7 @@
 namespace amcr
 {
 LoadedPrototype loadPrototypeFile(const std::string& path, const std::string& label, const Params& params,
-                                  const TableCache& cache)
+                                  const TableCache& cache, const std::string& instance)
 {
   LoadedPrototype loaded;
   try
@@ -16,7 +16,7 @@ LoadedPrototype loadPrototypeFile(const std::string& path, const std::string& la
     const std::vector<unsigned char> bytes = readImageFileBytes(path);
     const std::uint64_t image_hash = hashBytes(bytes.data(), bytes.size());
     const std::uint64_t key = tableCacheKey(image_hash, params);
-    TableCache::Found found = cache.read(label, image_hash, key);
+    TableCache::Found found = cache.read(label, image_hash, key, instance);
     if (found.prototype)
     {
       loaded.prototype = std::move(found.prototype);
@@ -30,7 +30,8 @@ LoadedPrototype loadPrototypeFile(const std::string& path, const std::string& la
                                 "); the table of '" + path + "' is built again and the file replaced");
     }
     auto prototype = std::make_shared<const Prototype>(label, decodeImageFile(bytes, path), params.prototype_size,
-                                                      params.edge_threshold, params.blur_sigma);
+                                                      params.edge_threshold, params.blur_sigma, params.table_stride,
+                                                      instance);
     const std::string not_written = cache.write(label, image_hash, key, *prototype);
     if (!not_written.empty())
       loaded.warnings.push_back("table cache: the table of '" + path + "' is not stored: " + not_written);

@@ -2,65 +2,80 @@
 
 #include <algorithm>
 #include <exception>
-#include <filesystem>
+#include <atomic>
+#include <chrono>
+#include <mutex>
 
 #include "amcr/errors.h"
+#include "amcr/prototype_directory.h"
 #include "amcr/prototype_file.h"
 #include "amcr/resource_bounds.h"
 
 namespace amcr
 {
-namespace fs = std::filesystem;
-
 namespace
 {
-/// The regular files of `directory`; an entry whose type cannot be read (a
-/// symlink loop, a dangling link, no permission) is skipped with a warning.
-std::vector<fs::path> listFiles(const std::string& directory, const PrototypeMemory::WarningSink& warn)
-{
-  std::error_code error;
-  if (!fs::is_directory(directory, error))
-    throw MemoryError("the prototype directory '" + directory + "' " +
-                      (error ? "cannot be read: " + error.message() : std::string("is not a directory")));
-  std::vector<fs::path> files;
-  fs::directory_iterator it(directory, error);
-  for (; !error && it != fs::directory_iterator(); it.increment(error))
-  {
-    std::error_code entry_error;
-    const bool regular = it->is_regular_file(entry_error);
-    if (entry_error && warn)
-      warn("skipped '" + it->path().string() + "': " + entry_error.message());
-    if (regular)
-      files.push_back(it->path());
-  }
-  if (error)
-    throw MemoryError("cannot list the prototype directory '" + directory + "': " + error.message());
-  if (files.empty())
-    throw MemoryError("the prototype directory '" + directory + "' holds no files");
-  std::sort(files.begin(), files.end());
-  return files;
-}
+constexpr double kProgressSeconds = 5.0;  // a progress line at most this often while tables load
 
-/// MemoryError when `count` more prototypes at `prototype_size` could take
-/// the tables past kMaxTableBytes.
-void checkTableBound(std::size_t held, std::size_t count, int prototype_size)
+/// Progress lines of a long load: "prototype tables: 400 of 1330 files
+/// (380 built, 20 from the cache), 12 s", at most one per kProgressSeconds,
+/// from whichever loading thread passes the mark.
+class LoadProgress
 {
-  const std::int64_t each = maxTableBytesPerPrototype(prototype_size);
+public:
+  LoadProgress(std::size_t total, const PrototypeMemory::WarningSink& sink)
+    : total_(total), sink_(sink), start_(std::chrono::steady_clock::now()), last_(start_)
+  {
+  }
+
+  void done(bool from_cache)
+  {
+    ++done_;
+    if (from_cache)
+      ++cached_;
+    if (!sink_)
+      return;
+    const auto now = std::chrono::steady_clock::now();
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (std::chrono::duration<double>(now - last_).count() < kProgressSeconds)
+      return;
+    last_ = now;
+    const std::size_t done = done_, cached = cached_;
+    sink_("prototype tables: " + std::to_string(done) + " of " + std::to_string(total_) + " files (" +
+          std::to_string(done - cached) + " built, " + std::to_string(cached) + " from the cache), " +
+          std::to_string(static_cast<int>(std::chrono::duration<double>(now - start_).count())) + " s");
+  }
+
+private:
+  const std::size_t total_;
+  const PrototypeMemory::WarningSink& sink_;
+  const std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_;
+  std::atomic<std::size_t> done_{0};
+  std::atomic<std::size_t> cached_{0};
+  std::mutex mutex_;
+};
+
+/// MemoryError when `count` more prototypes at `prototype_size` and
+/// `table_stride` could take the tables past kMaxTableBytes.
+void checkTableBound(std::size_t held, std::size_t count, int prototype_size, int table_stride)
+{
+  const std::int64_t each = maxTableBytesPerPrototype(prototype_size, table_stride);
   const std::int64_t total = static_cast<std::int64_t>(held) + static_cast<std::int64_t>(count) * each;
   if (total > kMaxTableBytes)
     throw MemoryError("the prototype tables would need up to " + formatBytes(total) + " (" +
                       (held ? formatBytes(static_cast<std::int64_t>(held)) + " held and " : std::string()) +
                       std::to_string(count) + " x " + formatBytes(each) + " at prototype_size " +
-                      std::to_string(prototype_size) + "): above the bound of " + formatBytes(kMaxTableBytes));
+                      std::to_string(prototype_size) + ", table_stride " + std::to_string(table_stride) + "): above the bound of " + formatBytes(kMaxTableBytes));
 }
 }  // namespace
 
 PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, const Params& params,
-                                               const WarningSink& warn)
+                                               const WarningSink& warn, const WarningSink& progress)
 {
   params.validate();
-  const std::vector<fs::path> files = listFiles(directory, warn);
-  checkTableBound(0, files.size(), params.prototype_size);
+  const std::vector<PrototypeSource> files = listPrototypeDirectory(directory, warn);
+  checkTableBound(0, files.size(), params.prototype_size, params.table_stride);
 
   std::string cache_off;
   const TableCache cache(tableCacheDirectory(params.table_cache_dir, &cache_off));
@@ -74,12 +89,14 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
   // do not depend on the thread count.
   std::vector<LoadedPrototype> loaded(files.size());
   std::vector<std::exception_ptr> failed(files.size());
+  LoadProgress load_progress(files.size(), progress);
   cv::parallel_for_(cv::Range(0, static_cast<int>(files.size())), [&](const cv::Range& range) {
     for (int i = range.start; i < range.end; ++i)
     {
       try
       {
-        loaded[i] = loadPrototypeFile(files[i].string(), files[i].stem().string(), params, cache);
+        loaded[i] = loadPrototypeFile(files[i].path, files[i].label, params, cache, files[i].instance);
+        load_progress.done(loaded[i].from_cache);
       }
       catch (...)  // not a bad file (bad_alloc, a cv::Exception): rethrown on this thread below
       {
@@ -102,10 +119,10 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
     {
       memory.append(std::move(loaded[i].prototype));
     }
-    catch (const MemoryError& e)  // a label taken by another extension
+    catch (const MemoryError& e)  // cannot happen: listPrototypeDirectory gives each file once
     {
       if (warn)
-        warn("skipped '" + files[i].string() + "': " + e.what());
+        warn("skipped '" + files[i].path + "': " + e.what());
       continue;
     }
     TableCacheCounts& counts = memory.cache_counts_;
@@ -120,19 +137,22 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
   return memory;
 }
 
-void PrototypeMemory::add(const std::string& label, const cv::Mat& image, const Params& params)
+void PrototypeMemory::add(const std::string& label, const cv::Mat& image, const Params& params,
+                          const std::string& instance)
 {
-  if (find(label) >= 0)
+  if (instance.empty() && find(label) >= 0)
     throw MemoryError("prototype label '" + label + "' is already in the memory");
-  checkTableBound(tableBytes(), 1, params.prototype_size);
+  checkTableBound(tableBytes(), 1, params.prototype_size, params.table_stride);
   append(std::make_shared<const Prototype>(label, image, params.prototype_size, params.edge_threshold,
-                                           params.blur_sigma));
+                                           params.blur_sigma, params.table_stride, instance));
 }
 
 void PrototypeMemory::append(std::shared_ptr<const Prototype> prototype)
 {
-  if (find(prototype->label()) >= 0)
-    throw MemoryError("prototype label '" + prototype->label() + "' is already in the memory");
+  if (findInstance(prototype->instance()) >= 0)
+    throw MemoryError("prototype instance '" + prototype->instance() + "' is already in the memory");
+  if (find(prototype->label()) < 0)
+    labels_.push_back(prototype->label());
   prototypes_.push_back(std::move(prototype));
 }
 
@@ -142,6 +162,23 @@ int PrototypeMemory::find(const std::string& label) const
     if (prototypes_[i]->label() == label)
       return static_cast<int>(i);
   return -1;
+}
+
+int PrototypeMemory::findInstance(const std::string& instance) const
+{
+  for (std::size_t i = 0; i < prototypes_.size(); ++i)
+    if (prototypes_[i]->instance() == instance)
+      return static_cast<int>(i);
+  return -1;
+}
+
+std::vector<int> PrototypeMemory::instancesOf(const std::string& label) const
+{
+  std::vector<int> found;
+  for (std::size_t i = 0; i < prototypes_.size(); ++i)
+    if (prototypes_[i]->label() == label)
+      found.push_back(static_cast<int>(i));
+  return found;
 }
 
 std::size_t PrototypeMemory::tableBytes() const

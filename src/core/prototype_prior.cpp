@@ -10,22 +10,22 @@ namespace amcr
 {
 namespace
 {
-/// Each prototype's weight: 1 unless params.prototype_priors names its label.
+/// Each prototype's weight: its label's (1 unless params.prototype_priors
+/// names the label) shared equally among the label's instances, so that a
+/// label weighs the same whether one image or twenty show it.
 std::vector<double> priorWeights(const PrototypeMemory& memory, const Params& params)
 {
-  const std::size_t count = memory.size();
-  std::vector<double> weight(count, 1.0);
+  std::vector<double> weight(memory.size(), 1.0);
   for (const auto& prior : params.prototype_priors)
-  {
-    bool found = false;
-    for (std::size_t p = 0; p < count; ++p)
-      if (memory[p].label() == prior.first)
-      {
-        weight[p] = prior.second;
-        found = true;
-      }
-    if (!found)
+    if (memory.find(prior.first) < 0)
       throw ParameterError("prototype_priors names '" + prior.first + "', which is not a label of the memory");
+  for (const std::string& label : memory.labels())
+  {
+    const auto named = params.prototype_priors.find(label);
+    const double label_weight = named == params.prototype_priors.end() ? 1.0 : named->second;
+    const std::vector<int> instances = memory.instancesOf(label);
+    for (int p : instances)
+      weight[p] = label_weight / static_cast<double>(instances.size());
   }
   return weight;
 }

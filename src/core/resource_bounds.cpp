@@ -1,5 +1,6 @@
 #include "amcr/resource_bounds.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "amcr/errors.h"
@@ -15,9 +16,10 @@ namespace
 bool productExceeds(std::int64_t a, std::int64_t b, std::int64_t bound) { return a > 0 && b > bound / a; }
 }  // namespace
 
-std::int64_t maxTableBytesPerPrototype(int prototype_size)
+std::int64_t maxTableBytesPerPrototype(int prototype_size, int table_stride)
 {
-  const std::int64_t side = prototype_size + 2LL * Prototype::tableMargin(prototype_size);
+  const std::int64_t stride = std::max(1, table_stride);
+  const std::int64_t side = (prototype_size + 2LL * Prototype::tableMargin(prototype_size) + stride - 1) / stride;
   return side * side * kDirectionBins;
 }
 

@@ -132,6 +132,7 @@ std::uint64_t tableCacheKey(std::uint64_t image_hash, const Params& params)
   key.addValue(image_hash);
   key.addValue(static_cast<std::int32_t>(params.prototype_size));
   key.addValue(params.edge_threshold).addValue(params.blur_sigma);
+  key.addValue(static_cast<std::int32_t>(params.table_stride));
   key.addValue(static_cast<std::int32_t>(kDirectionBins)).addValue(Prototype::kDistanceUnit);
   key.addValue(Prototype::kNoEdge);
   return key.value();
@@ -234,7 +235,8 @@ std::string TableCache::writePayload(const std::string& name, std::uint64_t key,
   return "";
 }
 
-TableCache::Found TableCache::read(const std::string& label, std::uint64_t image_hash, std::uint64_t key) const
+TableCache::Found TableCache::read(const std::string& label, std::uint64_t image_hash, std::uint64_t key,
+                                   const std::string& instance) const
 {
   Found found;
   std::vector<std::uint8_t> payload;
@@ -243,7 +245,7 @@ TableCache::Found TableCache::read(const std::string& label, std::uint64_t image
     return found;
   try
   {
-    found.prototype = Prototype::fromBytes(label, payload.data(), payload.size());
+    found.prototype = Prototype::fromBytes(label, payload.data(), payload.size(), instance);
   }
   catch (const MemoryError& e)
   {

@@ -74,7 +74,7 @@ int TrackRegistry::match(const RecognizedObject& object, const std::vector<bool>
   double best_overlap = rule_.min_overlap;
   for (std::size_t t = 0; t < tracks_.size(); ++t)
   {
-    if ((t < taken.size() && taken[t]) || tracks_[t].object.prototype_id != object.prototype_id)
+    if ((t < taken.size() && taken[t]) || tracks_[t].object.label != object.label)
       continue;
     const double o = outlineOverlap(tracks_[t].object.outline, object.outline);
     if (o >= best_overlap)

@@ -151,7 +151,9 @@ int run(const RunnerOptions& options)
   }
 
   auto memory = std::make_shared<amcr::PrototypeMemory>(
-      amcr::PrototypeMemory::loadDirectory(options.prototypes, params, reportWarning));
+      amcr::PrototypeMemory::loadDirectory(options.prototypes, params, reportWarning, [](const std::string& line) {
+        std::cerr << "amcr_offline: " << line << "\n";
+      }));
   amcr::Recognizer recognizer(params, memory);
   for (const std::string& warning : recognizer.filter().indexWarnings())
     reportWarning(warning);

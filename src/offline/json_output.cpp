@@ -86,6 +86,7 @@ void appendHomography(std::string& out, const Homography& h)
 void appendObject(std::string& out, const RecognizedObject& object)
 {
   out += "{\"label\": " + jsonString(object.label);
+  out += ", \"instance\": " + jsonString(object.instance);
   out += ", \"track_id\": " + std::to_string(object.track_id);
   out += ", \"state\": " + jsonString(toString(object.state));
   out += ", \"score\": " + jsonNumber(object.score, kScoreDecimals);

@@ -39,6 +39,7 @@ amcr::Recognition toMsg(const amcr::RecognizedObject& object)
 {
   amcr::Recognition msg;
   msg.label = object.label;
+  msg.instance = object.instance;
   msg.prototype_id = object.prototype_id;
   msg.track_id = object.track_id;
   msg.state = toMsg(object.state);
@@ -104,10 +105,12 @@ amcr::PrototypeTable toMsg(const amcr::PrototypeMemory* memory, const std::strin
   msg.directory = directory;
   if (memory == nullptr)
     return msg;
+  msg.labels = memory->labels();
   for (std::size_t i = 0; i < memory->size(); ++i)
   {
     amcr::PrototypeInfo info;
     info.label = (*memory)[i].label();
+    info.instance = (*memory)[i].instance();
     info.prototype_id = static_cast<int>(i);
     info.width = (*memory)[i].originalSize().width;
     info.height = (*memory)[i].originalSize().height;

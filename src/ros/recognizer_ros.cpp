@@ -119,7 +119,8 @@ std::string RecognizerRos::loadLocked(const std::string& directory)
   {
     std::vector<std::string> warnings;
     auto memory = std::make_shared<amcr::PrototypeMemory>(amcr::PrototypeMemory::loadDirectory(
-        directory, params_, [&warnings](const std::string& w) { warnings.push_back(w); }));
+        directory, params_, [&warnings](const std::string& w) { warnings.push_back(w); },
+        [](const std::string& line) { ROS_INFO("%s", line.c_str()); }));
     for (const std::string& w : warnings)
       ROS_WARN("prototypes: %s", w.c_str());
     std::unique_ptr<amcr::Recognizer> replacement;
@@ -200,7 +201,8 @@ void RecognizerRos::applyConfigLocked(const amcr::AMCRConfig& config, std::uint3
   std::shared_ptr<const amcr::PrototypeMemory> memory = memory_;
   if (memory && ((level & kReconfigureTables) || tablesDiffer(changed, params_)))
     memory = std::make_shared<amcr::PrototypeMemory>(amcr::PrototypeMemory::loadDirectory(
-        memory_directory_, changed, [](const std::string& w) { ROS_WARN("prototypes: %s", w.c_str()); }));
+        memory_directory_, changed, [](const std::string& w) { ROS_WARN("prototypes: %s", w.c_str()); },
+        [](const std::string& line) { ROS_INFO("%s", line.c_str()); }));
   const bool tables_rebuilt = memory != memory_;
   std::unique_ptr<amcr::Recognizer> rebuilt;
   if (memory)

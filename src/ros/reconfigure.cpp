@@ -136,7 +136,7 @@ ConfigBounds reconfigureBounds()
 bool tablesDiffer(const amcr::Params& a, const amcr::Params& b)
 {
   return a.prototype_size != b.prototype_size || a.edge_threshold != b.edge_threshold ||
-         a.blur_sigma != b.blur_sigma;
+         a.blur_sigma != b.blur_sigma || a.table_stride != b.table_stride;
 }
 
 std::string describeChanges(const amcr::Params& before, const amcr::Params& after)
