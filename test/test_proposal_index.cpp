@@ -181,6 +181,44 @@ TEST_F(ProposalIndexTest, TreeSearchAgreesWithExhaustiveSearch)
   EXPECT_GE(shared_total, 0.98 * exact_total) << shared_total << " of " << exact_total;  // [0.999]
 }
 
+// Issue 17: a memory too large for index_max_entries is indexed at a larger
+// stride, with a warning, and still finds the tables' own scans.
+TEST_F(ProposalIndexTest, AnEntryBudgetRaisesTheStride)
+{
+  const std::size_t budget = index_->size() / 3;
+  std::vector<std::string> warnings;
+  const amcr::ProposalIndex small(*memory_, kStride, {}, [&](const std::string& line) { warnings.push_back(line); },
+                                  nullptr, budget);
+  EXPECT_LE(small.size(), budget);
+  EXPECT_GT(small.size(), budget / 4);  // the smallest stride that fits, not any
+  EXPECT_GT(small.stride(), kStride);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("index_max_entries"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("stride " + std::to_string(small.stride())), std::string::npos) << warnings[0];
+  // A budget the memory fits changes nothing.
+  const amcr::ProposalIndex same(*memory_, kStride, {}, {}, nullptr, index_->size());
+  EXPECT_EQ(same.size(), index_->size());
+  EXPECT_EQ(same.stride(), kStride);
+  // The places it keeps are still found: a scan from the table at an indexed place.
+  const amcr::Prototype& p = (*memory_)[2];
+  int found = 0, tried = 0;
+  for (const cv::Point& at : p.interior())
+  {
+    if (at.x % small.stride() != 0 || at.y % small.stride() != 0 || tried >= 20)
+      continue;
+    const amcr::RaySignature rays = amcr_test::tableRays(p, at.x, at.y, 10, 1.0f);
+    const std::vector<amcr::ProposalCandidate> c = small.query(rays, 8);
+    if (c.empty())
+      continue;
+    ++tried;
+    found += std::any_of(c.begin(), c.end(), [&](const amcr::ProposalCandidate& k) {
+      return k.prototype == 2 && std::abs(k.x - at.x) <= 1 && std::abs(k.y - at.y) <= 1;
+    });
+  }
+  ASSERT_GT(tried, 5);
+  EXPECT_GE(found, tried * 8 / 10) << found << " of " << tried;
+}
+
 TEST_F(ProposalIndexTest, AnIncompleteScanProposesNothing)
 {
   amcr::RaySignature s;

@@ -47,6 +47,9 @@ struct Params
   double index_share = 0.5;  ///< share of new M-particles drawn from the proposal index [0, 1]; 0 = none
   int index_stride = 6;      ///< table px between the indexed points of a prototype [1, 64]
   int index_candidates = 64; ///< places a V-particle's query returns [1, 1000]
+  /// Most entries the index holds [0, 1e9]; a memory that would need more
+  /// is indexed at a larger stride (ProposalIndex); 0 = no limit.
+  int index_max_entries = 3000000;
 
   // Prototype memory.
   int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]

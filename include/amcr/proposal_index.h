@@ -61,6 +61,8 @@ public:
   /// Fewest places (indexed pixels with at least one heading whose 8 rays
   /// all meet an edge) a prototype needs to be indexed.
   static constexpr int kMinPlacesPerPrototype = 10;
+  /// The largest stride max_entries can raise the index to, table px.
+  static constexpr int kMaxIndexStride = 64;
 
   /// Indexes every prototype of `memory` whose `active` flag is set (all when
   /// `active` is empty) at pixels `stride` table px apart; a prototype with
@@ -72,9 +74,13 @@ public:
   /// below 1, MemoryError when no entry is left. With a `cache`, the k-d
   /// tree is read from it when it holds the tree of these very entries, and
   /// stored in it after a build (index_cache.h); a refused file or a failed
-  /// write is a warning.
+  /// write is a warning. When the entries would be more than `max_entries`
+  /// (0 = no limit), the memory is indexed again at the smallest larger
+  /// stride whose entries fit (their count falls with the stride's square),
+  /// with a warning saying so; stride() gives the stride used.
   ProposalIndex(const PrototypeMemory& memory, int stride, const std::vector<bool>& active = {},
-                const WarningSink& warn = WarningSink(), const TableCache* cache = nullptr);
+                const WarningSink& warn = WarningSink(), const TableCache* cache = nullptr,
+                std::size_t max_entries = 0);
   ~ProposalIndex();
   ProposalIndex(const ProposalIndex&) = delete;
   ProposalIndex& operator=(const ProposalIndex&) = delete;
@@ -87,6 +93,9 @@ public:
   std::vector<ProposalCandidate> queryExact(const RaySignature& rays, int k) const;
 
   std::size_t size() const { return entries_.size(); }
+  /// The stride the prototypes were indexed at (the constructor's, or a
+  /// larger one under max_entries).
+  int stride() const { return stride_; }
   /// Whether the k-d tree was read from the cache (not built).
   bool treeFromCache() const { return tree_from_cache_; }
   /// Labels of the prototypes left out of the index.
@@ -116,6 +125,7 @@ private:
   cv::Mat descriptors_;  // one row per entry, CV_32F
   std::unique_ptr<cv::flann::Index> index_;
   std::vector<std::string> left_out_;
+  int stride_ = 1;
   bool tree_from_cache_ = false;
 };
 }  // namespace amcr

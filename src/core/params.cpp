@@ -46,6 +46,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(index_share, "", 0, 1, "share of new M-particles drawn from the proposal index; 0 = none (paper)"),
       AMCR_INT(index_stride, "prototype px", 1, 64, "distance between the indexed points of a prototype"),
       AMCR_INT(index_candidates, "", 1, 1000, "places of the memory a V-particle's query returns"),
+      AMCR_INT(index_max_entries, "", 0, 1e9, "most entries of the proposal index; a larger memory is indexed at a larger stride; 0 = no limit"),
       AMCR_INT(prototype_size, "px", 32, 512, "longer side of a prototype in its lookup table"),
       AMCR_INT(table_stride, "table px", 1, 4, "spacing of the lookup table's nodes; 1 = every pixel (exact), s = one per s x s block (s^2 less memory and build time)"),
       AMCR_DOUBLE(max_ray_length, "working px", 10, 4000, "longest radial scan in the working image"),

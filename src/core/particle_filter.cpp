@@ -70,7 +70,8 @@ std::shared_ptr<const ProposalIndex> ParticleFilter::buildIndex(const PrototypeM
   const TableCache cache(tableCacheDirectory(params_.table_cache_dir));
   return std::make_shared<const ProposalIndex>(
       memory, params_.index_stride, prior.activeMask(),
-      [&warnings](const std::string& line) { warnings.push_back(line); }, cache.readable() ? &cache : nullptr);
+      [&warnings](const std::string& line) { warnings.push_back(line); }, cache.readable() ? &cache : nullptr,
+      static_cast<std::size_t>(params_.index_max_entries));
 }
 
 void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)

@@ -69,7 +69,7 @@ bool describeRays(const RaySignature& rays, RayDescriptor& out)
 }
 
 ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const std::vector<bool>& active,
-                             const WarningSink& warn, const TableCache* cache)
+                             const WarningSink& warn, const TableCache* cache, std::size_t max_entries)
 {
   if (stride < 1)
     throw ParameterError("index_stride must be at least 1 table px, got " + std::to_string(stride));
@@ -80,11 +80,39 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
     if (active.empty() || active[p])
       indexed.push_back(static_cast<int>(p));
   std::vector<Part> parts(indexed.size());
-  cv::parallel_for_(cv::Range(0, static_cast<int>(indexed.size())), [&](const cv::Range& range) {
-    for (int i = range.start; i < range.end; ++i)
-      parts[i] = indexPrototype(memory[indexed[i]], indexed[i], stride);
-  });
-  std::vector<RayDescriptor> rows;
+  const auto indexAll = [&](int at_stride) {
+    std::size_t total = 0;
+    cv::parallel_for_(cv::Range(0, static_cast<int>(indexed.size())), [&](const cv::Range& range) {
+      for (int i = range.start; i < range.end; ++i)
+        parts[i] = indexPrototype(memory[indexed[i]], indexed[i], at_stride);
+    });
+    for (const Part& part : parts)
+      total += part.entries.size();
+    return total;
+  };
+  stride_ = stride;
+  const std::size_t wanted = indexAll(stride_);
+  std::size_t total = wanted;
+  // A budget that does not grow with the memory: entries fall with the
+  // square of the stride, so the first guess nearly always fits.
+  while (max_entries > 0 && total > max_entries && stride_ < kMaxIndexStride)
+  {
+    const double grow = std::sqrt(static_cast<double>(total) / static_cast<double>(max_entries));
+    stride_ = std::min(kMaxIndexStride, std::max(stride_ + 1, static_cast<int>(std::ceil(stride_ * grow))));
+    total = indexAll(stride_);
+  }
+  if (stride_ != stride && warn)
+    warn("the proposal index would hold " + std::to_string(wanted) + " entries at index_stride " +
+         std::to_string(stride) + ", more than index_max_entries (" + std::to_string(max_entries) +
+         "): the memory is indexed at stride " + std::to_string(stride_) + " (" + std::to_string(total) + " entries)");
+  // Merged in prototype order, each part freed once copied (a large
+  // memory's parts run to gigabytes).
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    kept += parts[i].places < kMinPlacesPerPrototype ? 0 : parts[i].entries.size();
+  entries_.reserve(kept);
+  descriptors_.create(static_cast<int>(kept), kFeatureRays, CV_32F);
+  int row = 0;
   for (std::size_t i = 0; i < parts.size(); ++i)
   {
     if (parts[i].places < kMinPlacesPerPrototype)
@@ -98,16 +126,16 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
       continue;
     }
     entries_.insert(entries_.end(), parts[i].entries.begin(), parts[i].entries.end());
-    rows.insert(rows.end(), parts[i].rows.begin(), parts[i].rows.end());
+    for (const RayDescriptor& d : parts[i].rows)
+      std::copy(d.begin(), d.end(), descriptors_.ptr<float>(row++));
+    parts[i] = Part();
   }
+  parts.clear();
   if (entries_.empty())
     throw MemoryError("the proposal index has no usable entry: no prototype has " +
                       std::to_string(kMinPlacesPerPrototype) +
                       " pixels whose 8 rays all meet an edge within the table's reach (set index_share to 0 to "
                       "work without it)");
-  descriptors_.create(static_cast<int>(rows.size()), kFeatureRays, CV_32F);
-  for (int r = 0; r < descriptors_.rows; ++r)
-    std::copy(rows[r].begin(), rows[r].end(), descriptors_.ptr<float>(r));
   const std::uint64_t key = cache ? indexCacheKey(descriptors_, kLeafSize) : 0;
   if (cache)
   {

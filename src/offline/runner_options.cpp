@@ -146,8 +146,10 @@ Runs Radial-AMCR (Active Monte Carlo Recognition) on recorded images and
 writes one JSON object per input frame, one per line.
 
 Required:
-  --prototypes DIR    directory of prototype silhouettes (label = file name
-                      without extension); unusable files are skipped with a
+  --prototypes DIR    directory of prototype silhouettes: loose image files
+                      (label = file name without extension) and label
+                      directories (label = the directory's name, each image
+                      in it an instance); unusable files are skipped with a
                       warning, an error if none is left
   --input PATH        a video file, a directory of images (taken in file-name
                       order; files without an image extension are ignored), or
@@ -169,8 +171,8 @@ Options:
   --help, -h          print this text and exit
 
 Output, one line per input frame (numbers in px, time in ms):
-  {"frame": 0, "time_ms": 3.100, "iteration": 1, "objects": [{"label": "bird-1",
-   "track_id": 1, "state": "held", "score": 0.9300, "support": 17,
+  {"frame": 0, "time_ms": 3.100, "iteration": 1, "objects": [{"label": "bird",
+   "instance": "bird/bird-1.png", "track_id": 1, "state": "held", "score": 0.9300, "support": 17,
    "image_to_prototype": [[a, b, c], [d, e, f]],
    "prototype_to_image": [[a, b, c], [d, e, f]],
    "correspondences": [[x_image, y_image, x_prototype, y_prototype], ...]}],

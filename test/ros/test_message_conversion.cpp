@@ -2,6 +2,7 @@
 // field of amcr/Recognition as the core has it, the homography row-major and
 // the view (issue 13).
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "message_conversion.h"
 
@@ -11,6 +12,7 @@ TEST(MessageConversion, ObjectFieldsWithHomographyAndView)
 {
   amcr::RecognizedObject object;
   object.label = "target";
+  object.instance = "target/target-2.png";
   object.prototype_id = 1;
   object.track_id = 5;
   object.state = amcr::ObjectState::kHeld;
@@ -27,6 +29,7 @@ TEST(MessageConversion, ObjectFieldsWithHomographyAndView)
 
   const amcr::Recognition msg = amcr_ros::toMsg(object);
   EXPECT_EQ(msg.label, "target");
+  EXPECT_EQ(msg.instance, "target/target-2.png");
   EXPECT_EQ(msg.prototype_id, 1);
   EXPECT_EQ(msg.track_id, 5);
   EXPECT_EQ(msg.state, amcr::Recognition::HELD);
@@ -82,5 +85,30 @@ TEST(MessageConversion, StatesAndLostObjects)
   EXPECT_EQ(amcr_ros::stateName(amcr::Recognition::HELD), "held");
   EXPECT_EQ(amcr_ros::stateName(amcr::Recognition::LOST), "lost");
   EXPECT_EQ(amcr_ros::stateName(200), "unknown");
+}
+
+// The label table (issue 17): the distinct labels, and a row per instance.
+TEST(MessageConversion, LabelTableListsLabelsWithTheirInstances)
+{
+  amcr::Params params;
+  params.prototype_size = 32;
+  cv::Mat disc = cv::Mat::zeros(60, 80, CV_8UC1), box = cv::Mat::zeros(60, 80, CV_8UC1);
+  cv::circle(disc, cv::Point(40, 30), 20, cv::Scalar(255), -1);
+  cv::rectangle(box, cv::Rect(20, 15, 40, 30), cv::Scalar(255), -1);
+  amcr::PrototypeMemory memory;
+  memory.add("disc", disc, params, "disc/small.png");
+  memory.add("disc", box, params, "disc/square.png");
+  memory.add("box", box, params);
+  const amcr::PrototypeTable table = amcr_ros::toMsg(&memory, "/prototypes", ros::Time(5));
+  EXPECT_EQ(table.labels, (std::vector<std::string>{"disc", "box"}));
+  ASSERT_EQ(table.prototypes.size(), 3u);
+  EXPECT_EQ(table.prototypes[0].label, "disc");
+  EXPECT_EQ(table.prototypes[0].instance, "disc/small.png");
+  EXPECT_EQ(table.prototypes[1].label, "disc");
+  EXPECT_EQ(table.prototypes[1].instance, "disc/square.png");
+  EXPECT_EQ(table.prototypes[1].prototype_id, 1);
+  EXPECT_EQ(table.prototypes[2].instance, "box");
+  EXPECT_EQ(table.prototypes[2].width, 80);
+  EXPECT_EQ(table.directory, "/prototypes");
 }
 }  // namespace
