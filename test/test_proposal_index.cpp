@@ -219,6 +219,28 @@ TEST_F(ProposalIndexTest, AnEntryBudgetRaisesTheStride)
   EXPECT_GE(found, tried * 8 / 10) << found << " of " << tried;
 }
 
+// A memory larger than the sample the stride is chosen from (130 > 64
+// prototypes): the entries fit the budget, and the stride is the smallest
+// that fits or close to it.
+TEST(ProposalIndexBudget, ALargeMemoryFitsFromTheSampledStride)
+{
+  amcr::Params params;
+  params.prototype_size = 48;
+  amcr::PrototypeMemory memory;
+  for (std::uint64_t k = 0; k < 130; ++k)
+    memory.add("shape" + std::to_string(k), amcr_test::drawRandomSilhouette(k + 1), params);
+  const amcr::ProposalIndex full(memory, 2);
+  const std::size_t budget = full.size() / 5;
+  std::vector<std::string> warnings;
+  const amcr::ProposalIndex capped(memory, 2, {}, [&](const std::string& line) { warnings.push_back(line); }, nullptr,
+                                   budget);
+  EXPECT_LE(capped.size(), budget);
+  EXPECT_GT(capped.size(), budget / 3) << "stride " << capped.stride();
+  EXPECT_GE(capped.stride(), 4);  // sqrt(5) x 2, rounded up
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("index_max_entries"), std::string::npos) << warnings[0];
+}
+
 TEST_F(ProposalIndexTest, AnIncompleteScanProposesNothing)
 {
   amcr::RaySignature s;

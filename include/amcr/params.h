@@ -112,6 +112,9 @@ struct Params
   double refine_search = 6.0;         ///< search along the outline normal for an edge, working px [0, 100]
   bool fit_homography = true;         ///< after the affine, fit a homography and use it when the outline demands it
   double decision_threshold = 0.75;   ///< smallest score reported [0, 1]
+  /// Distance along the outline's normal within which an outline point
+  /// finds its image edge in the score, working px [0.5, 20].
+  double verify_tolerance = 2.0;
   double min_object_size = 64.0;      ///< smallest object reported: longer side of its outline's box, input px [0, 4000]
 
   // Objects: life cycle and attention (track_registry.h).

@@ -63,6 +63,8 @@ public:
   static constexpr int kMinPlacesPerPrototype = 10;
   /// The largest stride max_entries can raise the index to, table px.
   static constexpr int kMaxIndexStride = 64;
+  /// Prototypes sampled to choose the stride under max_entries.
+  static constexpr std::size_t kBudgetSample = 64;
 
   /// Indexes every prototype of `memory` whose `active` flag is set (all when
   /// `active` is empty) at pixels `stride` table px apart; a prototype with

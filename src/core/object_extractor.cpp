@@ -15,7 +15,6 @@ namespace amcr
 {
 namespace
 {
-constexpr double kVerifyTolerance = 2.0;           // px along the normal within which an outline point finds its edge
 constexpr int kMaxLeadingHypotheses = 3;           // hypotheses whose poses are injected as M-particles
 constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
 constexpr double kKeepTrackRatio = 0.65;           // a tracked object stays at this share of the decision threshold
@@ -83,7 +82,7 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   // Too small to tell shapes apart: neither reported nor fed back to attention.
   if (outlineSize(object.outline) < in.params.min_object_size)
     return false;
-  object.score = use_homography ? perspective->support : outlineSupport(p, in.scanner, table_to_image, kVerifyTolerance);
+  object.score = use_homography ? perspective->support : outlineSupport(p, in.scanner, table_to_image, in.params.verify_tolerance);
   object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
   object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
   object.homography_valid = use_homography;
@@ -117,7 +116,7 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
     return;
   const int prototype = candidate.object.prototype_id;
   PerspectiveRule rule;
-  rule.tolerance = kVerifyTolerance;
+  rule.tolerance = in.params.verify_tolerance;
   rule.max_scale = in.params.max_affine_scale;
   const PerspectiveFit fit = choosePerspective(in.memory[prototype], in.scanner, candidate.table_to_image,
                                                candidate.object.score, in.params.refine_iterations,

@@ -80,6 +80,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(refine_search, "working px", 0, 100, "search along the outline normal for an edge"),
       AMCR_INT(fit_homography, "", 0, 1, "1: a homography is fitted after the affine and used when the outline demands it"),
       AMCR_DOUBLE(decision_threshold, "", 0, 1, "smallest score reported"),
+      AMCR_DOUBLE(verify_tolerance, "working px", 0.5, 20, "distance along the outline's normal within which an outline point finds its image edge in the score"),
       AMCR_DOUBLE(min_object_size, "input px", 0, 4000, "smallest object reported: longer side of the smallest rectangle around its outline"),
       AMCR_INT(confirm_frames, "frames", 1, 1000, "frames an object is reported in before it is confirmed (tentative until then)"),
       AMCR_INT(lost_frames, "frames", 1, 1000, "frames in a row without a report after which an object's track ends (lost)"),

@@ -90,19 +90,42 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
       total += part.entries.size();
     return total;
   };
+  // A budget that does not grow with the memory. Entries fall with the
+  // square of the stride: the stride is first chosen from a sample of at
+  // most kBudgetSample prototypes (indexing a large memory at a stride too
+  // fine for it would take gigabytes), then raised again in the rare case
+  // the whole memory still does not fit.
+  const auto strideFor = [&](int from, double entries) {
+    const double grow = std::sqrt(entries / static_cast<double>(max_entries));
+    return std::min(kMaxIndexStride, std::max(from + 1, static_cast<int>(std::ceil(from * grow))));
+  };
   stride_ = stride;
-  const std::size_t wanted = indexAll(stride_);
-  std::size_t total = wanted;
-  // A budget that does not grow with the memory: entries fall with the
-  // square of the stride, so the first guess nearly always fits.
+  double wanted = 0.0;  // the entries at `stride`: estimated from the sample, or counted
+  if (max_entries > 0 && indexed.size() > kBudgetSample)
+  {
+    const std::size_t step = indexed.size() / kBudgetSample;
+    std::vector<std::size_t> sampled(kBudgetSample, 0);
+    cv::parallel_for_(cv::Range(0, static_cast<int>(kBudgetSample)), [&](const cv::Range& range) {
+      for (int k = range.start; k < range.end; ++k)
+        sampled[k] = indexPrototype(memory[indexed[k * step]], indexed[k * step], stride).entries.size();
+    });
+    std::size_t sum = 0;
+    for (std::size_t n : sampled)
+      sum += n;
+    wanted = static_cast<double>(sum) * static_cast<double>(indexed.size()) / kBudgetSample;
+    if (wanted > static_cast<double>(max_entries))
+      stride_ = strideFor(stride_, wanted);
+  }
+  std::size_t total = indexAll(stride_);
+  if (stride_ == stride)
+    wanted = static_cast<double>(total);
   while (max_entries > 0 && total > max_entries && stride_ < kMaxIndexStride)
   {
-    const double grow = std::sqrt(static_cast<double>(total) / static_cast<double>(max_entries));
-    stride_ = std::min(kMaxIndexStride, std::max(stride_ + 1, static_cast<int>(std::ceil(stride_ * grow))));
+    stride_ = strideFor(stride_, static_cast<double>(total));
     total = indexAll(stride_);
   }
   if (stride_ != stride && warn)
-    warn("the proposal index would hold " + std::to_string(wanted) + " entries at index_stride " +
+    warn("the proposal index would hold about " + std::to_string(std::llround(wanted)) + " entries at index_stride " +
          std::to_string(stride) + ", more than index_max_entries (" + std::to_string(max_entries) +
          "): the memory is indexed at stride " + std::to_string(stride_) + " (" + std::to_string(total) + " entries)");
   // Merged in prototype order, each part freed once copied (a large
