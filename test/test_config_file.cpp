@@ -36,4 +36,16 @@ TEST(ConfigFile, LoadsWithoutError)
   for (const amcr::ParameterInfo& info : amcr::parameterTable())
     EXPECT_DOUBLE_EQ(amcr::getParameter(loaded, info.name), amcr::getParameter(defaults, info.name)) << info.name;
 }
+
+// config/large_memory.yaml (issue 17) changes only the tables' stride.
+TEST(ConfigFile, LargeMemoryFileSetsCompactTablesOnly)
+{
+  const std::string path = std::string(AMCR_SOURCE_DIR) + "/config/large_memory.yaml";
+  const amcr::Params loaded = amcr::loadParams(path);
+  const amcr::Params defaults;
+  EXPECT_EQ(loaded.table_stride, 2);
+  for (const amcr::ParameterInfo& info : amcr::parameterTable())
+    if (info.name != "table_stride")
+      EXPECT_DOUBLE_EQ(amcr::getParameter(loaded, info.name), amcr::getParameter(defaults, info.name)) << info.name;
+}
 }  // namespace

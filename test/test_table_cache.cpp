@@ -229,6 +229,35 @@ TEST_F(TableCacheTest, FileForOtherParametersIsRefusedAsStaleAndRebuilt)
   EXPECT_EQ(load().cacheCounts().read, 3u);
 }
 
+// Issue 17: compact tables and label directories go through the cache too:
+// the instances keep their names, and a change of table_stride is stale.
+TEST_F(TableCacheTest, CompactTablesOfInstancesAreReadBackAndAStrideChangeIsStale)
+{
+  fs::create_directory(images_ + "/kite");
+  ASSERT_TRUE(cv::imwrite(images_ + "/kite/one.png", amcr_test::drawPrototype(ShapeId::kFlag)));
+  params_.table_stride = 2;
+  const amcr::PrototypeMemory first = load();
+  ASSERT_EQ(first.size(), 4u);
+  EXPECT_EQ(first.cacheCounts().written, 4u);
+  const amcr::PrototypeMemory second = load();
+  EXPECT_EQ(second.cacheCounts().read, 4u);
+  expectSameTables(second, freshBuild());
+  for (std::size_t i = 0; i < second.size(); ++i)
+  {
+    EXPECT_EQ(second[i].instance(), first[i].instance());
+    EXPECT_EQ(second[i].tableStride(), 2);
+  }
+  EXPECT_EQ(second.findInstance("kite/one.png"), 2);  // by label: arrow, crescent, kite, star
+  EXPECT_EQ(second[2].label(), "kite");
+
+  params_.table_stride = 1;
+  Warnings warnings;
+  const amcr::PrototypeMemory exact = load(&warnings);
+  EXPECT_EQ(exact.cacheCounts().refused, 4u);
+  EXPECT_TRUE(warnings.mention(cacheFile("arrow"), "stale")) << warnings.all();
+  EXPECT_EQ(exact[0].tableStride(), 1);
+}
+
 TEST_F(TableCacheTest, KeyOfAnotherImageIsRefusedAsStale)
 {
   // A file copied under another image's name: its key is not this image's.
@@ -350,6 +379,9 @@ TEST(TableCacheKey, ChangesWithTheImageAndEveryTableParameterOnly)
   EXPECT_NE(amcr::tableCacheKey(1, p), key);
   p = base;
   p.blur_sigma = 1.5;
+  EXPECT_NE(amcr::tableCacheKey(1, p), key);
+  p = base;
+  p.table_stride = 2;
   EXPECT_NE(amcr::tableCacheKey(1, p), key);
   p = base;
   p.num_v_particles = 7;  // not a table parameter
