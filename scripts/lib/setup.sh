@@ -21,7 +21,7 @@ AMCR_PACKAGES=(
   libopencv-dev libeigen3-dev libgtest-dev python3-dynamic-reconfigure
   libdiagnostic-updater-dev libnodeletlib-dev librosbag-dev opencv-doc libbenchmark-dev
   pluginlib-dev ros-message-generation libstd-srvs-dev libgeometry-msgs-dev libsensor-msgs-dev
-  librostest-dev python3-rosbag python3-diagnostic-msgs python3-std-srvs
+  librostest-dev python3-rosbag python3-diagnostic-msgs python3-std-srvs python3-rosparam catkin-lint
 )
 
 # scripts/fuzz: clang and its libFuzzer runtime. On bookworm the runtime (libclang_rt.fuzzer) is in
