@@ -1,5 +1,9 @@
 // config/amcr.yaml is the documented set of parameters: it must hold every
-// parameter of amcr::Params, each at its default, and load cleanly.
+// parameter of amcr::Params, each at its default, and load cleanly. It is
+// plain YAML (no OpenCV header), so that rosparam reads it too
+// (test/test_package_files.py reads it as rosparam does).
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -13,7 +17,12 @@ const std::string kConfigPath = std::string(AMCR_SOURCE_DIR) + "/config/amcr.yam
 
 TEST(ConfigFile, HoldsEveryParameterAtItsDefault)
 {
-  cv::FileStorage storage(kConfigPath, cv::FileStorage::READ);
+  std::ifstream in(kConfigPath);
+  std::stringstream text;
+  text << in.rdbuf();
+  ASSERT_NE(text.str().rfind("%YAML", 0), 0u) << kConfigPath << " must not start with OpenCV's header (rosparam refuses it)";
+  // OpenCV's reader wants the header that the file leaves out for rosparam.
+  cv::FileStorage storage("%YAML:1.0\n" + text.str(), cv::FileStorage::READ | cv::FileStorage::MEMORY);
   ASSERT_TRUE(storage.isOpened()) << "cannot read " << kConfigPath;
   const amcr::Params defaults;
   for (const amcr::ParameterInfo& info : amcr::parameterTable())
