@@ -16,6 +16,7 @@
 #include "amcr/proposal_index.h"
 #include "amcr/recognizer.h"
 #include "amcr/table_cache.h"
+#include "candidate_lists.h"
 #include "scene_drawing.h"
 #include "warning_lines.h"
 
@@ -67,15 +68,7 @@ protected:
       const int bin = static_cast<int>(gen() % amcr::kDirectionBins);
       const amcr::RaySignature rays = amcr_test::tableRays(prototype, at.x, at.y, bin, 1.3f);
       const std::vector<amcr::ProposalCandidate> ca = a.query(rays, 64), cb = b.query(rays, 64);
-      ASSERT_EQ(ca.size(), cb.size());
-      for (std::size_t i = 0; i < ca.size(); ++i)
-      {
-        EXPECT_EQ(ca[i].prototype, cb[i].prototype);
-        EXPECT_EQ(ca[i].x, cb[i].x);
-        EXPECT_EQ(ca[i].y, cb[i].y);
-        EXPECT_EQ(ca[i].bin, cb[i].bin);
-        EXPECT_EQ(ca[i].distance, cb[i].distance);
-      }
+      amcr_test::expectSameCandidates(ca, cb);
       compared += ca.empty() ? 0 : 1;
     }
     EXPECT_GT(compared, 100);  // most scans see an edge on all 8 rays

@@ -115,16 +115,9 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
         warn(w);
     if (!loaded[i].prototype)
       continue;
-    try
-    {
-      memory.append(std::move(loaded[i].prototype));
-    }
-    catch (const MemoryError& e)  // cannot happen: listPrototypeDirectory gives each file once
-    {
-      if (warn)
-        warn("skipped '" + files[i].path + "': " + e.what());
-      continue;
-    }
+    // Each instance (a file relative to the directory) comes once from
+    // listPrototypeDirectory, which has already skipped labels taken twice.
+    memory.append(std::move(loaded[i].prototype));
     TableCacheCounts& counts = memory.cache_counts_;
     counts.read += loaded[i].from_cache ? 1 : 0;
     counts.built += loaded[i].from_cache ? 0 : 1;
