@@ -1,0 +1,198 @@
+#include "amcr/region_shape.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <opencv2/imgproc.hpp>
+
+namespace amcr
+{
+namespace
+{
+constexpr int kFillShift = 4;  // fractional bits of the region's corners in cv::fillPoly
+
+/// Twice the signed area of a polygon (shoelace).
+double twiceArea(const std::vector<cv::Point2d>& polygon)
+{
+  double a = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+  {
+    const cv::Point2d& p = polygon[i];
+    const cv::Point2d& q = polygon[(i + 1) % polygon.size()];
+    a += p.x * q.y - q.x * p.y;
+  }
+  return a;
+}
+
+/// The part of `polygon` on the side of the line x (axis 0) or y (axis 1) =
+/// `limit` that `keep_below` names (Sutherland-Hodgman, one edge).
+std::vector<cv::Point2d> clipAxis(const std::vector<cv::Point2d>& polygon, int axis, double limit, bool keep_below)
+{
+  std::vector<cv::Point2d> out;
+  const auto coord = [axis](const cv::Point2d& p) { return axis == 0 ? p.x : p.y; };
+  const auto inside = [&](const cv::Point2d& p) { return keep_below ? coord(p) <= limit : coord(p) >= limit; };
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+  {
+    const cv::Point2d& p = polygon[i];
+    const cv::Point2d& q = polygon[(i + 1) % polygon.size()];
+    const bool p_in = inside(p), q_in = inside(q);
+    if (p_in)
+      out.push_back(p);
+    if (p_in != q_in)
+    {
+      const double t = (limit - coord(p)) / (coord(q) - coord(p));
+      out.push_back(p + t * (q - p));
+    }
+  }
+  return out;
+}
+
+/// `polygon` clipped to the pixels of an image of `size` (pixel-centre
+/// convention: the image covers [-0.5, w - 0.5] x [-0.5, h - 0.5]).
+std::vector<cv::Point2d> clipToImage(std::vector<cv::Point2d> polygon, const cv::Size& size)
+{
+  polygon = clipAxis(polygon, 0, -0.5, false);
+  polygon = clipAxis(polygon, 0, size.width - 0.5, true);
+  polygon = clipAxis(polygon, 1, -0.5, false);
+  polygon = clipAxis(polygon, 1, size.height - 0.5, true);
+  return polygon;
+}
+
+std::string number(double value)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+CutShape failure(const std::string& why)
+{
+  CutShape cut;
+  cut.why = why;
+  return cut;
+}
+}  // namespace
+
+std::vector<cv::Point2f> rectangleRegion(double x, double y, double width, double height)
+{
+  const auto p = [](double px, double py) { return cv::Point2f(static_cast<float>(px), static_cast<float>(py)); };
+  return {p(x, y), p(x + width, y), p(x + width, y + height), p(x, y + height)};
+}
+
+CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, const Params& params)
+{
+  // The region.
+  if (region.size() < 3)
+    return failure("the region is empty: it has " + std::to_string(region.size()) +
+                   " points, a polygon needs at least 3 points");
+  std::vector<cv::Point2d> polygon;
+  for (std::size_t i = 0; i < region.size(); ++i)
+  {
+    if (!std::isfinite(region[i].x) || !std::isfinite(region[i].y))
+      return failure("the region is empty: its point " + std::to_string(i) + " is not finite");
+    polygon.emplace_back(region[i].x, region[i].y);
+  }
+  if (std::abs(twiceArea(polygon)) < 1.0)
+    return failure("the region is empty: its polygon has zero area");
+
+  // The image.
+  if (image.empty())
+    return failure("the image is empty");
+  if (image.type() != CV_8UC1 && image.type() != CV_8UC3)
+    return failure("the image has type " + cv::typeToString(image.type()) +
+                   "; only 8-bit grey (CV_8UC1) and BGR (CV_8UC3) images are taken");
+
+  // The region's mask, clipped to the image, and its inset part.
+  polygon = clipToImage(polygon, image.size());
+  if (polygon.size() < 3 || std::abs(twiceArea(polygon)) < 1.0)
+    return failure("the region lies outside the image (" + std::to_string(image.cols) + " x " +
+                   std::to_string(image.rows) + " px)");
+  std::vector<cv::Point> corners;
+  for (const cv::Point2d& p : polygon)
+    corners.emplace_back(cvRound(p.x * (1 << kFillShift)), cvRound(p.y * (1 << kFillShift)));
+  cv::Mat full_mask = cv::Mat::zeros(image.size(), CV_8UC1);
+  cv::fillPoly(full_mask, std::vector<std::vector<cv::Point>>{corners}, cv::Scalar(255), cv::LINE_8, kFillShift);
+  const cv::Rect box = cv::boundingRect(full_mask);
+  if (box.area() == 0)
+    return failure("the region lies outside the image (" + std::to_string(image.cols) + " x " +
+                   std::to_string(image.rows) + " px)");
+  // Everything below works in `roi`: the region's box, with room for the smoothing.
+  const int pad = kRegionInset + 2 + static_cast<int>(std::ceil(3.0 * std::max(0.0, params.blur_sigma)));
+  const cv::Rect roi = (box + cv::Size(2 * pad, 2 * pad) - cv::Point(pad, pad)) & cv::Rect(cv::Point(), image.size());
+  const cv::Mat mask = full_mask(roi);
+  const double region_area = cv::countNonZero(mask);
+  cv::Mat inner;
+  cv::erode(mask, inner,
+            cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * kRegionInset + 1, 2 * kRegionInset + 1)),
+            cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  if (cv::countNonZero(inner) == 0)
+    return failure("the region is too small: nothing of it lies " + std::to_string(kRegionInset) +
+                   " px inside its border");
+
+  // Edges inside the region.
+  cv::Mat grey;
+  if (image.channels() == 3)
+    cv::cvtColor(image(roi), grey, cv::COLOR_BGR2GRAY);
+  else
+    grey = image(roi).clone();
+  if (params.blur_sigma > 0.0)
+    cv::GaussianBlur(grey, grey, cv::Size(0, 0), params.blur_sigma);
+  // Canny's L2 Sobel magnitude is 4 times a step's grey-level change over 2 px.
+  const double step = std::max(1.0, params.edge_threshold);
+  cv::Mat edges;
+  cv::Canny(grey, edges, 2.0 * step, 4.0 * step, 3, true);
+  edges &= inner;
+  if (cv::countNonZero(edges) == 0)
+    return failure("no edges inside the region: nothing in it steps by edge_threshold = " + number(step) +
+                   " grey levels");
+
+  // Gaps closed; the outer contours are the candidates.
+  cv::Mat closed;
+  cv::morphologyEx(edges, closed, cv::MORPH_CLOSE,
+                   cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(kClosingSize, kClosingSize)),
+                   cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  closed &= inner;
+  cv::Mat border;  // the inset region's outermost pixels
+  cv::erode(inner, border, cv::Mat(), cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  border = inner & ~border;
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(closed.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+
+  const double least_area = std::max(kMinShapeArea, kMinRegionShare * region_area);
+  int best = -1;
+  double best_area = 0.0;
+  cv::Mat fill(closed.size(), CV_8UC1);
+  for (std::size_t i = 0; i < contours.size(); ++i)
+  {
+    const bool touches = std::any_of(contours[i].begin(), contours[i].end(),
+                                     [&](const cv::Point& p) { return border.at<uchar>(p) != 0; });
+    if (touches)
+      continue;
+    fill.setTo(0);
+    cv::drawContours(fill, contours, static_cast<int>(i), cv::Scalar(255), cv::FILLED);
+    const double interior = cv::countNonZero(fill & ~closed);
+    if (interior >= least_area && interior > best_area)
+    {
+      best = static_cast<int>(i);
+      best_area = interior;
+    }
+  }
+  if (best < 0)
+    return failure("no closed outline inside the region: none of its " + std::to_string(contours.size()) +
+                   " edge contours stays clear of the region's border and encloses at least " +
+                   number(std::round(least_area)) + " px");
+
+  // The silhouette: the filled outline, cropped with a margin.
+  fill.setTo(0);
+  cv::drawContours(fill, contours, best, cv::Scalar(255), cv::FILLED);
+  const cv::Rect shape_box = cv::boundingRect(contours[best]);
+  CutShape cut;
+  cut.bounds = cv::Rect(shape_box.x + roi.x - kSilhouetteMargin, shape_box.y + roi.y - kSilhouetteMargin,
+                        shape_box.width + 2 * kSilhouetteMargin, shape_box.height + 2 * kSilhouetteMargin);
+  cut.silhouette = cv::Mat::zeros(cut.bounds.size(), CV_8UC1);
+  fill(shape_box).copyTo(
+      cut.silhouette(cv::Rect(kSilhouetteMargin, kSilhouetteMargin, shape_box.width, shape_box.height)));
+  return cut;
+}
+}  // namespace amcr
