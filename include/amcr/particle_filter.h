@@ -77,6 +77,14 @@ public:
   /// On an error the filter keeps its memory.
   void setMemory(std::shared_ptr<const PrototypeMemory> memory);
 
+  /// Swaps in a memory that extends the current one (prototypes added after
+  /// the current ones, PrototypeMemory::isPrefixOf): the particles stay,
+  /// their prototype indices still hold, and the prior and the proposal
+  /// index are rebuilt, so the new prototypes are explored from the next
+  /// iteration on. MemoryError when `memory` does not extend the current
+  /// one; on an error the filter keeps its memory.
+  void extendMemory(std::shared_ptr<const PrototypeMemory> memory);
+
   /// Empties the filter and re-seeds the generator with params.seed.
   void reset();
 
@@ -202,6 +210,8 @@ private:
   /// KLD-sampling (Fox 2003): how many M-particles the next generation of
   /// a V-particle needs, given `picks` drawn from the current one.
   int kldCount(const std::vector<int>& picks, std::size_t begin, std::vector<std::uint64_t>& bins) const;
+  /// Checks `memory` and swaps it in with its prior and index (no reset); on an error nothing changes.
+  void swapMemory(std::shared_ptr<const PrototypeMemory> memory);
   /// The proposal index of `memory` under `prior` (null when index_share
   /// is 0); its warnings go to `warnings`.
   std::shared_ptr<const ProposalIndex> buildIndex(const PrototypeMemory& memory, const PrototypePrior& prior,

@@ -47,6 +47,15 @@ public:
   void add(const std::string& label, const cv::Mat& image, const Params& params,
            const std::string& instance = std::string());
 
+  /// Removes every prototype of `label` and returns how many there were (0
+  /// for an unknown label: nothing changes). The prototypes after them move
+  /// down: their indices change.
+  std::size_t remove(const std::string& label);
+
+  /// True when the first size() prototypes of `other` are this memory's own
+  /// (the same objects, in the same order): `other` extends this one.
+  bool isPrefixOf(const PrototypeMemory& other) const;
+
   std::size_t size() const { return prototypes_.size(); }
   bool empty() const { return prototypes_.empty(); }
   const Prototype& operator[](std::size_t i) const { return *prototypes_[i]; }

@@ -48,6 +48,11 @@ public:
   /// Swaps the memory and resets the filter.
   void setMemory(std::shared_ptr<const PrototypeMemory> memory);
 
+  /// Swaps in a memory that extends the current one (a prototype taught at
+  /// runtime, ParticleFilter::extendMemory) without a reset: particles,
+  /// tracks and the optical flow go on. MemoryError otherwise (nothing changes).
+  void extendMemory(std::shared_ptr<const PrototypeMemory> memory);
+
   /// Forgets everything: particles are re-seeded at the next step, the
   /// generator is re-seeded with params.seed, the optical flow restarts, the
   /// frame budget's time estimates start again from 0 (the policy and the

@@ -83,6 +83,20 @@ void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
 
 void ParticleFilter::setMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
+  swapMemory(std::move(memory));
+  reset();
+}
+
+void ParticleFilter::extendMemory(std::shared_ptr<const PrototypeMemory> memory)
+{
+  if (!memory || !memory_->isPrefixOf(*memory))
+    throw MemoryError("the new memory does not extend the current one (its first " +
+                      std::to_string(memory_->size()) + " prototypes must be the current ones)");
+  swapMemory(std::move(memory));
+}
+
+void ParticleFilter::swapMemory(std::shared_ptr<const PrototypeMemory> memory)
+{
   memory = checkedMemory(std::move(memory));
   PrototypePrior prior = checkedPrior(*memory, params_);
   std::vector<std::string> warnings;
@@ -92,7 +106,6 @@ void ParticleFilter::setMemory(std::shared_ptr<const PrototypeMemory> memory)
   prior_ = std::move(prior);
   index_ = std::move(index);
   index_warnings_ = std::move(warnings);
-  reset();
 }
 
 void ParticleFilter::reset()

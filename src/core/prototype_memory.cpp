@@ -149,6 +149,26 @@ void PrototypeMemory::append(std::shared_ptr<const Prototype> prototype)
   prototypes_.push_back(std::move(prototype));
 }
 
+std::size_t PrototypeMemory::remove(const std::string& label)
+{
+  const std::size_t before = prototypes_.size();
+  prototypes_.erase(std::remove_if(prototypes_.begin(), prototypes_.end(),
+                                   [&label](const std::shared_ptr<const Prototype>& p) { return p->label() == label; }),
+                    prototypes_.end());
+  labels_.erase(std::remove(labels_.begin(), labels_.end(), label), labels_.end());
+  return before - prototypes_.size();
+}
+
+bool PrototypeMemory::isPrefixOf(const PrototypeMemory& other) const
+{
+  if (other.prototypes_.size() < prototypes_.size())
+    return false;
+  for (std::size_t i = 0; i < prototypes_.size(); ++i)
+    if (other.prototypes_[i] != prototypes_[i])
+      return false;
+  return true;
+}
+
 int PrototypeMemory::find(const std::string& label) const
 {
   for (std::size_t i = 0; i < prototypes_.size(); ++i)

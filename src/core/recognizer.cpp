@@ -56,6 +56,11 @@ void Recognizer::setMemory(std::shared_ptr<const PrototypeMemory> memory)
   reset();
 }
 
+void Recognizer::extendMemory(std::shared_ptr<const PrototypeMemory> memory)
+{
+  filter_.extendMemory(std::move(memory));
+}
+
 void Recognizer::reset()
 {
   filter_.reset();
