@@ -22,6 +22,7 @@ AMCR_PACKAGES=(
   libdiagnostic-updater-dev libnodeletlib-dev librosbag-dev opencv-doc libbenchmark-dev
   pluginlib-dev ros-message-generation libstd-srvs-dev libgeometry-msgs-dev libsensor-msgs-dev
   librostest-dev python3-rosbag python3-diagnostic-msgs python3-std-srvs python3-rosparam catkin-lint
+  libimage-geometry-dev libvisualization-msgs-dev python3-visualization-msgs python3-tf2-ros
 )
 
 # scripts/fuzz: clang and its libFuzzer runtime. On bookworm the runtime (libclang_rt.fuzzer) is in

@@ -98,10 +98,12 @@ amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::
   return msg;
 }
 
-amcr::PrototypeTable toMsg(const amcr::PrototypeMemory* memory, const std::string& directory, const ros::Time& stamp)
+amcr::PrototypeTable toMsg(const amcr::PrototypeMemory* memory, const std::string& directory, std::uint32_t version,
+                           const ros::Time& stamp)
 {
   amcr::PrototypeTable msg;
   msg.header.stamp = stamp;
+  msg.version = version;
   msg.directory = directory;
   if (memory == nullptr)
     return msg;

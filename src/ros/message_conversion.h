@@ -25,7 +25,7 @@ amcr::Recognitions toMsg(const amcr::RecognitionResult& result, const std_msgs::
 /// The name of a Recognition.state constant ("tentative", ..., amcr::toString's), "unknown" for another value.
 std::string stateName(std::uint8_t state);
 
-/// The label table of a memory (empty when `memory` is null).
-amcr::PrototypeTable toMsg(const amcr::PrototypeMemory* memory, const std::string& directory,
+/// The label table of a memory (empty when `memory` is null), as version `version`.
+amcr::PrototypeTable toMsg(const amcr::PrototypeMemory* memory, const std::string& directory, std::uint32_t version,
                            const ros::Time& stamp);
 }  // namespace amcr_ros

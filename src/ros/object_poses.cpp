@@ -1,20 +1,43 @@
 #include "object_poses.h"
 
+#include <image_transport/camera_common.h>
+#include <ros/names.h>
 #include <xmlrpcpp/XmlRpcException.h>
-
-#include "planar_pose.h"
 
 namespace amcr_ros
 {
-ObjectPoses::ObjectPoses(ros::NodeHandle nh, const ros::NodeHandle& private_nh)
+namespace
 {
-  loadParameters(private_nh);
-  sub_info_ = nh.subscribe("camera_info", 1, &ObjectPoses::cameraInfoCb, this);
+/// The last name of a topic ("/camera/image_rect_color" -> "image_rect_color").
+std::string baseName(const std::string& topic)
+{
+  const std::size_t slash = topic.rfind('/');
+  return slash == std::string::npos ? topic : topic.substr(slash + 1);
+}
+}  // namespace
+
+ObjectPoses::ObjectPoses(ros::NodeHandle nh, const ros::NodeHandle& private_nh, const std::string& image_topic)
+{
+  loadParameters(private_nh, image_topic);
+  // An explicit remap of camera_info wins; otherwise the image's sibling (image_transport's rule).
+  const std::string remapped = nh.resolveName("camera_info", true);
+  camera_info_topic_ = remapped != nh.resolveName("camera_info", false)
+                           ? remapped
+                           : image_transport::getCameraInfoTopic(image_topic);
+  sub_info_ = nh.subscribe(camera_info_topic_, 1, &ObjectPoses::cameraInfoCb, this);
+  ROS_INFO("camera_info from %s; poses for %s images of %s", camera_info_topic_.c_str(),
+           rectified_ ? "rectified" : "raw", image_topic.c_str());
 }
 
-void ObjectPoses::loadParameters(const ros::NodeHandle& private_nh)
+void ObjectPoses::loadParameters(const ros::NodeHandle& private_nh, const std::string& image_topic)
 {
-  private_nh.param<std::string>("frame_prefix", frame_prefix_, "amcr/");
+  // The node's own name keeps two recognizers' frames apart: /left/amcr -> left/amcr/.
+  std::string node = private_nh.getNamespace();
+  while (!node.empty() && node.front() == '/')
+    node.erase(0, 1);
+  private_nh.param<std::string>("frame_prefix", frame_prefix_, node.empty() ? "amcr/" : node + "/");
+  if (!private_nh.getParam("rectified", rectified_))
+    rectified_ = baseName(image_topic).rfind("image_rect", 0) == 0;
   XmlRpc::XmlRpcValue value;
   if (!private_nh.getParam("metres_per_pixel", value))
     return;
@@ -62,11 +85,14 @@ void ObjectPoses::cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg)
 {
   try
   {
-    const std::string problem = checkCameraInfo(*msg);
+    auto camera = std::make_shared<PnpCamera>();
+    std::string problem;
+    if (!pnpCamera(*msg, rectified_, *camera, problem))
+      camera.reset();
     std::lock_guard<std::mutex> lock(mutex_);
     if (!problem.empty() && info_errors_.shouldReport(problem))
       ROS_ERROR("%s: no poses until a valid camera_info arrives", problem.c_str());
-    camera_info_ = problem.empty() ? msg : nullptr;
+    camera_ = camera;
   }
   catch (...)  // nothing may leave a callback
   {
@@ -74,14 +100,16 @@ void ObjectPoses::cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg)
 }
 
 void ObjectPoses::fill(const std::vector<amcr::RecognizedObject>& objects, const amcr::PrototypeMemory& memory,
-                       amcr::Recognitions& out)
+                       amcr::Recognitions& out, PlaneOutlines* outlines)
 {
+  if (outlines)
+    outlines->assign(out.objects.size(), {});
   if (out.objects.empty())
     return;
-  sensor_msgs::CameraInfoConstPtr info;
+  std::shared_ptr<const PnpCamera> camera;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    info = camera_info_;
+    camera = camera_;
   }
   for (std::size_t i = 0; i < out.objects.size() && i < objects.size(); ++i)
   {
@@ -89,17 +117,20 @@ void ObjectPoses::fill(const std::vector<amcr::RecognizedObject>& objects, const
     amcr::Recognition& object = out.objects[i];
     const double mpp = metresPerPixel(core.label);
     std::string why;
-    if (!info)
-      why = "no valid camera_info received";
+    if (!camera)
+      why = "no valid camera_info received on " + camera_info_topic_;
     else if (out.header.frame_id.empty())
       why = "the image has no frame_id";
     else if (!(mpp > 0.0))
       why = "~metres_per_pixel is not set for '" + core.label + "'";
     else if (core.prototype_id >= 0 && core.prototype_id < static_cast<int>(memory.size()))
     {
-      const cv::Size size = memory[static_cast<std::size_t>(core.prototype_id)].originalSize();
+      const amcr::Prototype& prototype = memory[static_cast<std::size_t>(core.prototype_id)];
+      const PlanarTarget target = planarTarget(prototype, mpp);
       // The homography: a perspective view's corners where they are (the affine's lift when not used).
-      object.pose_valid = planarPose(core.homography, size.width, size.height, mpp, *info, object.pose, why);
+      object.pose_valid = planarPose(core.homography, target, *camera, object.pose, why);
+      if (object.pose_valid && outlines)
+        (*outlines)[i] = planeOutline(prototype, target);
     }
     if (!object.pose_valid)
     {
@@ -108,6 +139,22 @@ void ObjectPoses::fill(const std::vector<amcr::RecognizedObject>& objects, const
     }
     broadcast(out.header, object);
   }
+}
+
+std::vector<geometry_msgs::Point> ObjectPoses::planeOutline(const amcr::Prototype& prototype,
+                                                          const PlanarTarget& target)
+{
+  const cv::Matx23d& m = prototype.tableToOriginal();
+  std::vector<geometry_msgs::Point> points;
+  points.reserve(prototype.outline().size());
+  for (const amcr::OutlinePoint& p : prototype.outline())
+  {
+    geometry_msgs::Point q;
+    q.x = (m(0, 0) * p.position.x + m(0, 1) * p.position.y + m(0, 2) - target.origin.x) * target.metres_per_pixel;
+    q.y = (m(1, 0) * p.position.x + m(1, 1) * p.position.y + m(1, 2) - target.origin.y) * target.metres_per_pixel;
+    points.push_back(q);
+  }
+  return points;
 }
 
 void ObjectPoses::broadcast(const std_msgs::Header& header, const amcr::Recognition& object)

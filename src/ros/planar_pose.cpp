@@ -3,12 +3,53 @@
 #include <cmath>
 #include <vector>
 
+#include <image_geometry/pinhole_camera_model.h>
 #include <opencv2/calib3d.hpp>
+#include <sensor_msgs/distortion_models.h>
 #include <tf2/LinearMath/Matrix3x3.h>
 #include <tf2/LinearMath/Quaternion.h>
 
 namespace amcr_ros
 {
+namespace
+{
+cv::Point2d apply(const cv::Matx23d& m, const cv::Point2d& p)
+{
+  return {m(0, 0) * p.x + m(0, 1) * p.y + m(0, 2), m(1, 0) * p.x + m(1, 1) * p.y + m(1, 2)};
+}
+
+bool allFinite(const cv::Matx33d& m)
+{
+  for (int i = 0; i < 9; ++i)
+    if (!std::isfinite(m.val[i]))
+      return false;
+  return true;
+}
+}  // namespace
+
+PlanarTarget planarTarget(const amcr::Prototype& prototype, double metres_per_pixel)
+{
+  const cv::Matx23d& to_original = prototype.tableToOriginal();
+  const double right = prototype.width() - 1.0, bottom = prototype.height() - 1.0;
+  PlanarTarget target;
+  target.corners = {apply(to_original, {0.0, 0.0}), apply(to_original, {right, 0.0}),
+                    apply(to_original, {right, bottom}), apply(to_original, {0.0, bottom})};
+  target.origin = apply(to_original, prototype.centre());  // the table is centred on the shape's box
+  target.metres_per_pixel = metres_per_pixel;
+  return target;
+}
+
+PlanarTarget imageTarget(int width, int height, double metres_per_pixel)
+{
+  PlanarTarget target;
+  const double right = width - 1.0, bottom = height - 1.0;
+  target.corners = {cv::Point2d(0.0, 0.0), cv::Point2d(right, 0.0), cv::Point2d(right, bottom),
+                    cv::Point2d(0.0, bottom)};
+  target.origin = cv::Point2d(0.5 * right, 0.5 * bottom);
+  target.metres_per_pixel = metres_per_pixel;
+  return target;
+}
+
 std::string checkCameraInfo(const sensor_msgs::CameraInfo& info)
 {
   const auto& k = info.K;
@@ -24,32 +65,75 @@ std::string checkCameraInfo(const sensor_msgs::CameraInfo& info)
   return "";
 }
 
-bool planarPose(const amcr::Affine& a, int width, int height, double metres_per_pixel,
-                const sensor_msgs::CameraInfo& info, geometry_msgs::Pose& pose, std::string& why)
-{
-  return planarPose(amcr::liftAffine(a), width, height, metres_per_pixel, info, pose, why);
-}
-
-bool planarPose(const amcr::Homography& h, int width, int height, double metres_per_pixel,
-                const sensor_msgs::CameraInfo& info, geometry_msgs::Pose& pose, std::string& why)
+bool pnpCamera(const sensor_msgs::CameraInfo& info, bool rectified, PnpCamera& camera, std::string& why)
 {
   try
   {
-    if (!(metres_per_pixel > 0.0) || width < 2 || height < 2)
+    why = checkCameraInfo(info);
+    if (!why.empty())
+      return false;
+    image_geometry::PinholeCameraModel model;
+    model.fromCameraInfo(info);
+    if (rectified)
+    {
+      const cv::Matx34d p = model.projectionMatrix();
+      const cv::Matx33d matrix(p(0, 0), p(0, 1), p(0, 2), p(1, 0), p(1, 1), p(1, 2), p(2, 0), p(2, 1), p(2, 2));
+      if (!allFinite(matrix) || !(matrix(0, 0) > 0.0) || !(matrix(1, 1) > 0.0))
+      {
+        why = "camera_info has zeros in P (fx' = " + std::to_string(p(0, 0)) +
+              "): a rectified image needs the rectified camera's projection";
+        return false;
+      }
+      camera.matrix = matrix;
+      camera.distortion.release();  // a rectified image is undistorted already
+      return true;
+    }
+    const std::string& model_name = info.distortion_model;
+    if (!info.D.empty() && !model_name.empty() && model_name != sensor_msgs::distortion_models::PLUMB_BOB &&
+        model_name != sensor_msgs::distortion_models::RATIONAL_POLYNOMIAL)
+    {
+      why = "camera_info's distortion model '" + model_name +
+            "' is not one PnP applies to raw images: feed the rectified image (image_proc's image_rect) and set "
+            "~rectified true";
+      return false;
+    }
+    camera.matrix = model.intrinsicMatrix();
+    camera.distortion.release();
+    const cv::Mat_<double>& d = model.distortionCoeffs();
+    if (!d.empty() && cv::countNonZero(d != 0.0) > 0)
+      camera.distortion = cv::Mat(d).reshape(1, 1).clone();
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    why = std::string("camera_info cannot be used: ") + e.what();
+    return false;
+  }
+}
+
+bool planarPose(const amcr::Affine& a, const PlanarTarget& target, const PnpCamera& camera, geometry_msgs::Pose& pose,
+                std::string& why)
+{
+  return planarPose(amcr::liftAffine(a), target, camera, pose, why);
+}
+
+bool planarPose(const amcr::Homography& h, const PlanarTarget& target, const PnpCamera& camera,
+                geometry_msgs::Pose& pose, std::string& why)
+{
+  try
+  {
+    const double mpp = target.metres_per_pixel;
+    const double extent = cv::norm(target.corners[2] - target.corners[0]);
+    if (!(mpp > 0.0) || !(extent >= 2.0))
     {
       why = "no metric size of the prototype";
       return false;
     }
-    why = checkCameraInfo(info);
-    if (!why.empty())
-      return false;
-    const std::vector<cv::Point2d> corners = {
-        {0.0, 0.0}, {width - 1.0, 0.0}, {width - 1.0, height - 1.0}, {0.0, height - 1.0}};
     std::vector<cv::Point3d> object;
     std::vector<cv::Point2d> image;
-    for (const cv::Point2d& c : corners)
+    for (const cv::Point2d& c : target.corners)
     {
-      object.emplace_back(c.x * metres_per_pixel, c.y * metres_per_pixel, 0.0);
+      object.emplace_back((c.x - target.origin.x) * mpp, (c.y - target.origin.y) * mpp, 0.0);
       image.push_back(amcr::applyHomography(h, c));
       if (!std::isfinite(image.back().x) || !std::isfinite(image.back().y))
       {
@@ -57,13 +141,8 @@ bool planarPose(const amcr::Homography& h, int width, int height, double metres_
         return false;
       }
     }
-    const cv::Matx33d k(info.K[0], info.K[1], info.K[2], info.K[3], info.K[4], info.K[5], info.K[6], info.K[7],
-                        info.K[8]);
-    cv::Mat d;  // empty: no distortion (a camera_info may leave D empty)
-    if (!info.D.empty())
-      d = cv::Mat(info.D, true).reshape(1, 1);
     cv::Mat rvec, tvec;
-    if (!cv::solvePnP(object, image, k, d, rvec, tvec, false, cv::SOLVEPNP_IPPE))
+    if (!cv::solvePnP(object, image, camera.matrix, camera.distortion, rvec, tvec, false, cv::SOLVEPNP_IPPE))
     {
       why = "solvePnP found no pose";
       return false;

@@ -1,5 +1,7 @@
 #include "recognizer_nodelet.h"
 
+#include "object_markers.h"
+
 #include <exception>
 
 #include <cv_bridge/cv_bridge.h>
@@ -16,8 +18,9 @@ void RecognizerNodelet::onInit()
   image_transport::ImageTransport private_it(private_nh);
   pub_overlay_ = private_it.advertise("overlay", 1);
   pub_recognitions_ = private_nh.advertise<amcr::Recognitions>("recognitions", 10);
+  pub_markers_ = private_nh.advertise<visualization_msgs::MarkerArray>("markers", 10);
   recognizer_ = std::make_unique<RecognizerRos>(nh, private_nh, [this] { return pub_overlay_.getNumSubscribers(); });
-  poses_ = std::make_unique<ObjectPoses>(nh, private_nh);
+  poses_ = std::make_unique<ObjectPoses>(nh, private_nh, nh.resolveName("image"));
 
   // The input is always subscribed: recognition is spread over frames, so the
   // filter must see the stream even while nobody listens yet.
@@ -39,8 +42,11 @@ void RecognizerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg)
     RecognizerRos::Frame frame;
     if (!recognizer_->process(msg, pub_overlay_.getNumSubscribers() > 0, frame))
       return;  // reported and counted
-    poses_->fill(frame.result.objects, *frame.memory, frame.message);
+    ObjectPoses::PlaneOutlines outlines;
+    poses_->fill(frame.result.objects, *frame.memory, frame.message, &outlines);
     pub_recognitions_.publish(frame.message);
+    if (pub_markers_.getNumSubscribers() > 0)
+      pub_markers_.publish(objectMarkers(frame.message, outlines, frame.restarted));
     if (!frame.overlay.empty())
       pub_overlay_.publish(cv_bridge::CvImage(msg->header, sensor_msgs::image_encodings::BGR8, frame.overlay).toImageMsg());
   }

@@ -1,6 +1,7 @@
 #include "recognizer_ros.h"
 
 #include <exception>
+#include <limits>
 #include <vector>
 
 #include <cv_bridge/cv_bridge.h>
@@ -14,6 +15,20 @@
 
 namespace amcr_ros
 {
+namespace
+{
+/// The same prototypes in the same order (what the label table shows).
+bool sameLabelTable(const amcr::PrototypeMemory& a, const amcr::PrototypeMemory& b)
+{
+  if (a.size() != b.size())
+    return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].instance() != b[i].instance() || a[i].label() != b[i].label())
+      return false;
+  return true;
+}
+}  // namespace
+
 RecognizerRos::RecognizerRos(ros::NodeHandle nh, ros::NodeHandle private_nh,
                              std::function<std::uint32_t()> overlay_subscribers)
   : nh_(nh), private_nh_(private_nh)
@@ -37,6 +52,18 @@ void RecognizerRos::loadStartupState()
     params_ = amcr::Params();
     ROS_ERROR("invalid parameters, using the defaults of config/amcr.yaml instead: %s", e.what());
   }
+
+  private_nh_.param("min_input_rate", min_input_rate_, 1.0);
+  private_nh_.param("max_input_rate", max_input_rate_, 0.0);
+  if (!(min_input_rate_ >= 0.0) || !(max_input_rate_ >= 0.0))
+  {
+    ROS_ERROR("~min_input_rate and ~max_input_rate must be >= 0 Hz, got %g and %g: using 1 and 0 (no upper bound)",
+              min_input_rate_, max_input_rate_);
+    min_input_rate_ = 1.0;
+    max_input_rate_ = 0.0;
+  }
+  if (max_input_rate_ <= 0.0)
+    max_input_rate_ = std::numeric_limits<double>::infinity();
 
   pub_prototypes_ = private_nh_.advertise<amcr::PrototypeTable>("prototypes", 1, true);
   std::string directory;
@@ -73,6 +100,15 @@ void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers
     stats_.report(status);
     status.add("overlay subscribers", overlay_subscribers ? overlay_subscribers() : 0u);
   });
+  // The image stream through diagnostic_updater's standard tasks: its rate against the accepted
+  // bounds, and how old the images are when they arrive.
+  input_rate_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&min_input_rate_, &max_input_rate_));
+  input_delay_ = std::make_unique<diagnostic_updater::TimeStampStatus>();
+  input_status_ = std::make_unique<diagnostic_updater::CompositeDiagnosticTask>("input images");
+  input_status_->addTask(input_rate_.get());
+  input_status_->addTask(input_delay_.get());
+  updater_->add(*input_status_);
   diagnostics_timer_ = private_nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
     try
     {
@@ -84,15 +120,27 @@ void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers
     }
   });
 
-  srv_reset_ = private_nh_.advertiseService<std_srvs::Empty::Request, std_srvs::Empty::Response>(
-      "reset", [this](std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-        reset();
+  srv_reset_ = private_nh_.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
+      "reset", [this](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+        response.message = reset();
+        response.success = true;
         return true;
       });
   srv_load_ = private_nh_.advertiseService<amcr::LoadPrototypes::Request, amcr::LoadPrototypes::Response>(
       "load_prototypes", [this](amcr::LoadPrototypes::Request& request, amcr::LoadPrototypes::Response& response) {
         response = loadPrototypes(request.directory);
         return true;  // the answer carries the error: the call itself succeeded
+      });
+  srv_teach_ = private_nh_.advertiseService<amcr::TeachPrototype::Request, amcr::TeachPrototype::Response>(
+      "teach", [this](amcr::TeachPrototype::Request& request, amcr::TeachPrototype::Response& response) {
+        response = teach(request);
+        return true;
+      });
+  srv_remove_ = private_nh_.advertiseService<amcr::RemovePrototype::Request, amcr::RemovePrototype::Response>(
+      "remove_prototype",
+      [this](amcr::RemovePrototype::Request& request, amcr::RemovePrototype::Response& response) {
+        response = removePrototype(request.label);
+        return true;
       });
 }
 
@@ -103,14 +151,18 @@ void RecognizerRos::restart(std::unique_ptr<amcr::Recognizer> replacement)
   else if (recognizer_)
     recognizer_->reset();
   last_stamp_ = ros::Time();
+  fresh_ = true;
   stats_.restarted();
 }
 
-void RecognizerRos::reset()
+std::string RecognizerRos::reset()
 {
   std::lock_guard<std::mutex> lock(mutex_);
   restart();
-  ROS_INFO("filter reset");
+  const std::string what = recognizer_ ? "filter reset: it starts again from the next image"
+                                       : "no prototypes loaded: the filter starts once they are";
+  ROS_INFO("%s", what.c_str());
+  return what;
 }
 
 std::string RecognizerRos::loadLocked(const std::string& directory)
@@ -130,6 +182,9 @@ std::string RecognizerRos::loadLocked(const std::string& directory)
       replacement = std::make_unique<amcr::Recognizer>(params_, memory);
     memory_ = memory;
     memory_directory_ = directory;
+    taught_.clear();
+    removed_labels_.clear();
+    ++table_version_;
     restart(std::move(replacement));
     for (const std::string& w : recognizer_->filter().indexWarnings())
       ROS_WARN("proposal index: %s", w.c_str());
@@ -200,17 +255,22 @@ void RecognizerRos::applyConfigLocked(const amcr::AMCRConfig& config, std::uint3
     return;  // the initial call, or nothing new
   std::shared_ptr<const amcr::PrototypeMemory> memory = memory_;
   if (memory && ((level & kReconfigureTables) || tablesDiffer(changed, params_)))
-    memory = std::make_shared<amcr::PrototypeMemory>(amcr::PrototypeMemory::loadDirectory(
-        memory_directory_, changed, [](const std::string& w) { ROS_WARN("prototypes: %s", w.c_str()); },
-        [](const std::string& line) { ROS_INFO("%s", line.c_str()); }));
+    memory = rebuildMemory(changed);
   const bool tables_rebuilt = memory != memory_;
   std::unique_ptr<amcr::Recognizer> rebuilt;
   if (memory)
     rebuilt = std::make_unique<amcr::Recognizer>(changed, memory);  // refuses priors naming no prototype
   // Nothing failed: swap everything at once.
+  // A prototype taught and saved now comes from the directory, in its sorted place: a new table.
+  const bool table_changed = tables_rebuilt && !sameLabelTable(*memory, *memory_);
   params_ = changed;
   memory_ = memory;
   restart(std::move(rebuilt));  // null only while no memory is loaded: then there is no filter either
+  if (table_changed)
+  {
+    ++table_version_;
+    publishPrototypeTable();
+  }
   if (recognizer_)
     for (const std::string& w : recognizer_->filter().indexWarnings())
       ROS_WARN("proposal index: %s", w.c_str());
@@ -248,6 +308,8 @@ bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_ove
   try
   {
     stats_.received(msg->header.seq);
+    input_rate_->tick();
+    input_delay_->tick(msg->header.stamp);
     std::string why;
     cv_bridge::CvImageConstPtr image = toCoreImage(msg, why);
     if (!image)
@@ -258,6 +320,7 @@ bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_ove
     }
 
     std::lock_guard<std::mutex> lock(mutex_);
+    last_image_ = image->image;  // what ~teach cuts from, also before any prototype is there
     if (!recognizer_)
     {
       stats_.skipped();
@@ -268,7 +331,10 @@ bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_ove
     followInput(msg->header.stamp, image->image.size());
     frame.result = recognizer_->step(image->image);
     frame.message = toMsg(frame.result, msg->header);
+    frame.message.prototype_table_version = table_version_;
     frame.memory = memory_;
+    frame.restarted = fresh_;
+    fresh_ = false;
     stats_.processed(frame.message, {frame.result.converged_v_particles, params_.num_v_particles,
                                      frame.result.flow_failures, params_.frame_budget_ms,
                                      frame.result.mean_m_particles});
@@ -313,7 +379,7 @@ void RecognizerRos::reportSkipped(const sensor_msgs::Image& msg, const std::stri
 
 void RecognizerRos::publishPrototypeTable()
 {
-  pub_prototypes_.publish(toMsg(memory_.get(), memory_directory_, ros::Time::now()));
+  pub_prototypes_.publish(toMsg(memory_.get(), memory_directory_, table_version_, ros::Time::now()));
 }
 
 void RecognizerRos::reportInputError(const std::string& text)

@@ -4,14 +4,20 @@
 // drive it, test/ros/test_recognizer_ros.cpp). The nodelet
 // (recognizer_nodelet.h) adds the image subscription and the output topics.
 //
-// Advertises (private): ~prototypes (amcr/PrototypeTable, latched), ~reset (std_srvs/Empty),
-//                       ~load_prototypes (amcr/LoadPrototypes), dynamic_reconfigure (cfg/AMCR.cfg), and
-//                       the "recognizer" status on /diagnostics.
-// Parameters (private): ~prototypes (directory), ~config (YAML file), every key of config/amcr.yaml.
+// Advertises (private): ~prototypes (amcr/PrototypeTable, latched, with its version), ~reset
+//                       (std_srvs/Trigger), ~load_prototypes (amcr/LoadPrototypes), ~teach
+//                       (amcr/TeachPrototype), ~remove_prototype (amcr/RemovePrototype),
+//                       dynamic_reconfigure (cfg/AMCR.cfg), and on /diagnostics the "recognizer" status
+//                       and the "input images" status (diagnostic_updater's FrequencyStatus and
+//                       TimeStampStatus of the image stream).
+// Parameters (private): ~prototypes (directory), ~config (YAML file), every key of config/amcr.yaml,
+//                       ~min_input_rate and ~max_input_rate (Hz, the input rate /diagnostics accepts;
+//                       default 1 and 0 = no upper bound).
 //
 // Every reset goes through restart(): ~reset, a reload of the memory, a
-// reconfiguration and time going backwards in the input all call it. No
-// method throws.
+// reconfiguration, ~remove_prototype and time going backwards in the input
+// all call it; ~teach does not (the taught prototype joins the running
+// filter). No method throws.
 #pragma once
 
 #include <cstdint>
@@ -26,7 +32,8 @@
 #include <opencv2/core.hpp>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
-#include <std_srvs/Empty.h>
+#include <diagnostic_updater/update_functions.h>
+#include <std_srvs/Trigger.h>
 
 #include "amcr/params.h"
 #include "amcr/prototype_memory.h"
@@ -35,6 +42,8 @@
 #include "report_throttle.h"
 #include <amcr/AMCRConfig.h>
 #include <amcr/LoadPrototypes.h>
+#include <amcr/RemovePrototype.h>
+#include <amcr/TeachPrototype.h>
 #include <amcr/Recognitions.h>
 
 namespace amcr_ros
@@ -55,17 +64,28 @@ public:
     amcr::Recognitions message;      ///< the same with the image's header; no poses yet
     std::shared_ptr<const amcr::PrototypeMemory> memory;  ///< the memory the objects refer to
     cv::Mat overlay;                 ///< bgr8, only when asked for
+    bool restarted = false;          ///< the first image since the filter (re)started
   };
 
   /// Runs the recognizer on one image (and draws the overlay when `draw_overlay`). False when the
   /// image was skipped: bad input or no prototypes, logged (throttled) and counted.
   bool process(const sensor_msgs::ImageConstPtr& msg, bool draw_overlay, Frame& frame);
 
-  /// ~reset: the filter starts again from the next image.
-  void reset();
+  /// ~reset: the filter starts again from the next image. Returns what was done.
+  std::string reset();
   /// ~load_prototypes: loads a memory and swaps it in (the filter restarts), or keeps the previous one
   /// and says why. Publishes the label table on success.
   amcr::LoadPrototypes::Response loadPrototypes(const std::string& directory);
+  /// ~teach: cuts the shape inside the request's region of the last image (amcr::cutShape) and adds
+  /// it as a prototype of a new label to the running filter (no restart); saves it to the prototype
+  /// directory when asked. On failure nothing changes and the answer says why.
+  amcr::TeachPrototype::Response teach(const amcr::TeachPrototype::Request& request);
+  /// ~remove_prototype: removes every prototype of a label (the filter restarts). On failure nothing
+  /// changes and the answer says why.
+  amcr::RemovePrototype::Response removePrototype(const std::string& label);
+  /// The label table's version (amcr/PrototypeTable.version).
+  std::uint32_t tableVersion() const;
+
   /// dynamic_reconfigure: rebuilds the filter (and the tables when `level` or the parameters ask for it)
   /// with `config`. Returns the error (naming the parameter, its value and range), empty on success; on
   /// an error nothing changes. Either way `config` becomes the configuration in effect, so that the
@@ -90,6 +110,14 @@ private:
   void applyConfigLocked(const amcr::AMCRConfig& config, std::uint32_t level);
   /// Loads a memory and swaps it in (lock held). Returns the error text, empty on success.
   std::string loadLocked(const std::string& directory);
+  /// The memory of memory_directory_ (none when empty) built with `params`, with this session's edits
+  /// applied: labels removed, prototypes taught and not saved added (lock held). Throws MemoryError.
+  std::shared_ptr<const amcr::PrototypeMemory> rebuildMemory(const amcr::Params& params) const;
+  /// Swaps in an edited `memory` (lock held): extended (the filter goes on) or not (it restarts);
+  /// the version counts up and the table is published.
+  void swapEditedMemory(std::shared_ptr<const amcr::PrototypeMemory> memory, bool extended);
+  /// teach() under the lock: the reason of a refusal, empty on success (then `response` is filled).
+  std::string teachLocked(const amcr::TeachPrototype::Request& request, amcr::TeachPrototype::Response& response);
   /// Resets when time goes backwards in the input; notes a change of image size (lock held).
   void followInput(const ros::Time& stamp, const cv::Size& size);
   void publishPrototypeTable();  // lock held
@@ -110,12 +138,28 @@ private:
   std::unique_ptr<amcr::Recognizer> recognizer_;  // null while no memory is loaded
   ros::Time last_stamp_;
   cv::Size last_size_;
+  bool fresh_ = true;   // no image processed since restart()
+  cv::Mat last_image_;  // the last image the core saw (~teach cuts from it)
+  std::uint32_t table_version_ = 0;
+  /// Prototypes taught in this session and not saved (kept over a rebuild of the tables), and labels
+  /// removed from the directory's memory; both forgotten by ~load_prototypes.
+  struct TaughtShape
+  {
+    std::string label;
+    cv::Mat silhouette;
+  };
+  std::vector<TaughtShape> taught_;
+  std::vector<std::string> removed_labels_;
 
   // Last: their callbacks use everything above.
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<amcr::AMCRConfig>> reconfigure_server_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
+  double min_input_rate_ = 1.0, max_input_rate_ = 0.0;  // Hz; read by the frequency status
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> input_rate_;
+  std::unique_ptr<diagnostic_updater::TimeStampStatus> input_delay_;
+  std::unique_ptr<diagnostic_updater::CompositeDiagnosticTask> input_status_;
   ros::WallTimer diagnostics_timer_;
-  ros::ServiceServer srv_reset_, srv_load_;
+  ros::ServiceServer srv_reset_, srv_load_, srv_teach_, srv_remove_;
 };
 }  // namespace amcr_ros

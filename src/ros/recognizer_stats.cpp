@@ -17,9 +17,7 @@ void RecognizerStats::received(std::uint32_t seq)
     dropped_ += seq - last_seq_ - 1;
   have_seq_ = true;
   last_seq_ = seq;
-  arrivals_.push_back(ros::WallTime::now());
-  if (arrivals_.size() > 50)
-    arrivals_.pop_front();
+  last_arrival_ = ros::WallTime::now();
 }
 
 void RecognizerStats::skipped()
@@ -73,16 +71,7 @@ void RecognizerStats::setPrototypes(std::size_t count, const std::string& proble
 void RecognizerStats::report(diagnostic_updater::DiagnosticStatusWrapper& status, double stale_after)
 {
   std::lock_guard<std::mutex> lock(mutex_);
-  const ros::WallTime now = ros::WallTime::now();
-  double rate = 0.0;
-  if (arrivals_.size() >= 2)
-  {
-    const double span = (arrivals_.back() - arrivals_.front()).toSec();
-    rate = span > 0.0 ? (arrivals_.size() - 1) / span : 0.0;
-  }
-  const bool stale = arrivals_.empty() || (now - arrivals_.back()).toSec() > stale_after;
-  if (stale)
-    rate = 0.0;
+  const bool stale = last_arrival_.isZero() || (ros::WallTime::now() - last_arrival_).toSec() > stale_after;
 
   if (prototypes_ == 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR,
@@ -97,7 +86,6 @@ void RecognizerStats::report(diagnostic_updater::DiagnosticStatusWrapper& status
   skipped_at_last_report_ = skipped_;
 
   status.add("prototypes", prototypes_);
-  status.add("input rate (Hz)", rate);
   status.add("frames received", received_);
   status.add("frames processed", processed_);
   status.add("frames skipped (bad input)", skipped_);

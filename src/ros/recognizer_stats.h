@@ -1,10 +1,11 @@
-// What the nodelet reports on /diagnostics (diagnostic_updater): input rate,
-// processing time per frame, dropped and skipped frames, overlays drawn, and
-// the state of the filter (converged V-particles, leading hypotheses).
+// What the nodelet reports in its "recognizer" status on /diagnostics
+// (diagnostic_updater): processing time per frame, dropped and skipped frames,
+// overlays drawn, and the state of the filter (converged V-particles, leading
+// hypotheses). The input's rate and delay are diagnostic_updater's own
+// FrequencyStatus and TimeStampStatus (recognizer_ros.h).
 // Thread-safe: the image callback records, the updater's timer reports.
 #pragma once
 
-#include <deque>
 #include <mutex>
 #include <string>
 
@@ -43,7 +44,7 @@ public:
 
 private:
   std::mutex mutex_;
-  std::deque<ros::WallTime> arrivals_;  // the last 50
+  ros::WallTime last_arrival_;  // zero: none yet
   bool have_seq_ = false;
   std::uint32_t last_seq_ = 0;
   long received_ = 0, processed_ = 0, skipped_ = 0, dropped_ = 0, overlays_ = 0;

@@ -21,9 +21,18 @@
 //                      exact image of a plane parallel to the image plane, at z = focal * m/px / scale.
 //   ~metres_per_pixel  the value the nodelet was given (default 0.001)
 //   ~translation_tolerance  of the pose and the tf frame, m (default 0.02)
+//   ~rectified         the frames are rectified images: camera_info's P has the focal ~focal, while
+//                      K (12 % longer) and D (barrel distortion) are the raw camera's; the nodelet
+//                      must use P (default false: K = P, D = 0)
+//   ~frame_prefix      the nodelet's tf prefix (default amcr/)
+//   ~check_markers     check ~markers: an outline and a label for the recognized object, deleted once
+//                      it leaves the image (default false; needs ~check_pose)
+//   ~check_teach       teach a drawn flag from a frame through ~teach, recognize it under another
+//                      pose, refuse bad regions, remove it (default false)
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
+#include <cstdio>
 #include <deque>
 #include <functional>
 #include <mutex>
@@ -41,13 +50,16 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
 #include <sensor_msgs/CameraInfo.h>
-#include <std_srvs/Empty.h>
+#include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <amcr/LoadPrototypes.h>
 #include <amcr/PrototypeTable.h>
 #include <amcr/Recognitions.h>
+#include <amcr/RemovePrototype.h>
+#include <amcr/TeachPrototype.h>
 
 #include "../scene_drawing.h"
 #include "reconfigure_request.h"
@@ -151,6 +163,10 @@ protected:
     pnh.param("focal", focal_, 500.0);
     pnh.param("metres_per_pixel", metres_per_pixel_, 0.001);
     pnh.param("translation_tolerance", translation_tolerance_, 0.02);
+    pnh.param("rectified", rectified_, false);
+    pnh.param<std::string>("frame_prefix", frame_prefix_, "amcr/");
+    pnh.param("check_markers", check_markers_, false);
+    pnh.param("check_teach", check_teach_, false);
     similarity_ = std::abs(scale_x - scale_y) < 1e-9 && std::abs(shear) < 1e-9;
     scale_ = scale_x;
 
@@ -249,11 +265,12 @@ protected:
                timeout_) != nullptr;
   }
 
-  /// A value of the nodelet's "recognizer" status, or null when `array` has none.
-  static const std::string* diagnosticValue(const diagnostic_msgs::DiagnosticArray& array, const std::string& key)
+  /// A value of the nodelet's status `name` ("recognizer", "input images"), or null when `array` has none.
+  static const std::string* diagnosticValue(const diagnostic_msgs::DiagnosticArray& array, const std::string& key,
+                                            const std::string& name = "recognizer")
   {
     for (const auto& status : array.status)
-      if (status.name.find("recognizer") != std::string::npos)
+      if (status.name.find(name) != std::string::npos)
         for (const auto& kv : status.values)
           if (kv.key == key)
             return &kv.value;
@@ -286,13 +303,30 @@ protected:
     info.D = {0, 0, 0, 0, 0};
     const double cx = 0.5 * (scene_.size.width - 1), cy = 0.5 * (scene_.size.height - 1);
     info.K = {focal, 0, cx, 0, focal, cy, 0, 0, 1};
+    if (rectified_)  // the raw camera differs: applying K and D to the rectified frames gives another pose
+    {
+      info.D = {-0.25, 0.08, 0, 0, 0};
+      info.K = {1.12 * focal, 0, cx, 0, 1.12 * focal, cy, 0, 0, 1};
+    }
     info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     info.P = {focal, 0, cx, 0, 0, focal, cy, 0, 0, 0, 1, 0};
     return info;
   }
 
-  static std::string node_, image_topic_, label_, info_topic_;
-  static bool check_pose_, similarity_;
+  /// The pose's origin in the prototype image: the centre of the shape's bounding box (as the nodelet
+  /// measures it, from the prototype it builds of the same image).
+  static cv::Point2d poseOrigin()
+  {
+    const amcr::Params params;
+    const amcr::Prototype prototype(label_, amcr_test::drawPrototype(shapeByName(label_)), params.prototype_size,
+                                    params.edge_threshold, params.blur_sigma);
+    const cv::Matx23d& m = prototype.tableToOriginal();
+    const cv::Point2d c = prototype.centre();
+    return {m(0, 0) * c.x + m(0, 1) * c.y + m(0, 2), m(1, 0) * c.x + m(1, 1) * c.y + m(1, 2)};
+  }
+
+  static std::string node_, image_topic_, label_, info_topic_, frame_prefix_;
+  static bool check_pose_, similarity_, rectified_, check_markers_, check_teach_;
   static double focal_, metres_per_pixel_, translation_tolerance_, scale_;
   static ros::Publisher info_pub_;
   static std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
@@ -314,8 +348,10 @@ protected:
   static std::uint64_t noise_index_;
 };
 
-std::string RecognizerTest::node_, RecognizerTest::image_topic_, RecognizerTest::label_, RecognizerTest::info_topic_;
-bool RecognizerTest::check_pose_ = false, RecognizerTest::similarity_ = false;
+std::string RecognizerTest::node_, RecognizerTest::image_topic_, RecognizerTest::label_, RecognizerTest::info_topic_,
+    RecognizerTest::frame_prefix_;
+bool RecognizerTest::check_pose_ = false, RecognizerTest::similarity_ = false, RecognizerTest::rectified_ = false,
+     RecognizerTest::check_markers_ = false, RecognizerTest::check_teach_ = false;
 double RecognizerTest::focal_ = 500.0, RecognizerTest::metres_per_pixel_ = 0.001,
        RecognizerTest::translation_tolerance_ = 0.02, RecognizerTest::scale_ = 1.0;
 ros::Publisher RecognizerTest::info_pub_;
@@ -345,6 +381,10 @@ TEST_F(RecognizerTest, StartsWithoutPrototypesAndLoadsThemAtRuntime)
   // Before any memory: the latched table is empty.
   auto empty = prototypes_.waitFor([](const amcr::PrototypeTable& t) { return t.prototypes.empty(); }, timeout_);
   EXPECT_TRUE(empty) << "no empty label table on " << node_ << "/prototypes";
+  if (empty)
+  {
+    EXPECT_EQ(empty->version, 0u) << "a table version before any memory";
+  }
 
   amcr::LoadPrototypes bad;
   bad.request.directory = dir_->file("no_such_directory");
@@ -364,6 +404,7 @@ TEST_F(RecognizerTest, StartsWithoutPrototypesAndLoadsThemAtRuntime)
   }
   EXPECT_NE(std::find(labels.begin(), labels.end(), label_), labels.end());
   EXPECT_EQ(table->directory, dir_->path());
+  EXPECT_EQ(table->version, 1u) << "the refused load must not count";
 }
 
 // The expected label with the true affine within a bounded number of frames.
@@ -382,6 +423,7 @@ TEST_F(RecognizerTest, RecognizesTheShownPrototype)
       break;
   }
   ASSERT_LT(frames, max_frames_) << label_ << " not recognized within " << max_frames_ << " frames";
+  EXPECT_EQ(last->prototype_table_version, 1u) << "the recognitions do not carry the label table's version";
   const amcr::Recognition& object = last->objects[0];
   EXPECT_GE(object.score, 0.0);
   EXPECT_LE(object.score, 1.0);
@@ -421,10 +463,11 @@ TEST_F(RecognizerTest, PoseAndFrameWithCameraInfo)
   EXPECT_TRUE(waitForLog(rosgraph_msgs::Log::ERROR, "zeros in K")) << "no error about a camera_info with zeros in K";
   info_pub_.publish(cameraInfo(focal_));
 
-  // The truth: prototype pixel (0, 0) is the frame's origin; the plane is parallel to the image.
+  // The truth: the centre of the shape's bounding box is the frame's origin; the plane is parallel
+  // to the image, seen through the focal of the frames (P's when rectified).
   const double z = focal_ * metres_per_pixel_ / scale_;
   const double cx = 0.5 * (scene_.size.width - 1), cy = 0.5 * (scene_.size.height - 1);
-  const cv::Point2d origin(truth_(0, 2), truth_(1, 2));
+  const cv::Point2d origin = amcr::applyAffine(truth_, poseOrigin());
   const tf2::Vector3 expected((origin.x - cx) * z / focal_, (origin.y - cy) * z / focal_, z);
 
   // The pose is checked once the object has been recognized with a pose in
@@ -448,7 +491,7 @@ TEST_F(RecognizerTest, PoseAndFrameWithCameraInfo)
       << "pose (" << position.x() << ", " << position.y() << ", " << position.z() << ") m, truth (" << expected.x()
       << ", " << expected.y() << ", " << expected.z() << ") m";
 
-  const std::string child = "amcr/" + object.label + "_" + std::to_string(object.track_id);
+  const std::string child = frame_prefix_ + object.label + "_" + std::to_string(object.track_id);
   geometry_msgs::TransformStamped t;
   try
   {
@@ -462,6 +505,86 @@ TEST_F(RecognizerTest, PoseAndFrameWithCameraInfo)
   EXPECT_LT((tf_position - expected).length(), translation_tolerance_);
   ROS_INFO("pose of %s: (%.4f, %.4f, %.4f) m, truth (%.4f, %.4f, %.4f) m", child.c_str(), position.x(), position.y(),
            position.z(), expected.x(), expected.y(), expected.z());
+}
+
+// ~markers: while the object is recognized with a pose, its outline (a line
+// strip in the camera frame, posed like the object) and its label; once it
+// leaves the image and its track is lost, both are deleted.
+TEST_F(RecognizerTest, MarkersFollowTheObjectAndAreDeletedWhenItLeaves)
+{
+  if (!check_markers_)
+    return;  // configurations without a pose have no markers to show
+  ensurePrototypes();
+  ASSERT_TRUE(waitForNodeletSubscription());
+  info_pub_.publish(cameraInfo(focal_));
+  Inbox<visualization_msgs::MarkerArray> markers;
+  markers.subscribe(*nh_, node_ + "/markers", 100);
+  ASSERT_TRUE(waitUntil([&] { return markers.publishers() > 0; }, timeout_)) << "nobody publishes " << node_
+                                                                             << "/markers";
+  // The nodelet draws markers only while someone listens: it learns of us within a few frames.
+  int track = -1;
+  visualization_msgs::MarkerArrayConstPtr shown;
+  for (int frames = 0; frames < max_frames_ && !shown; ++frames)
+  {
+    auto r = publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp()));
+    ASSERT_TRUE(r);
+    if (!recognizedRight(*r) || !r->objects[0].pose_valid)
+      continue;
+    track = r->objects[0].track_id;
+    const ros::Time stamp = r->header.stamp;
+    shown = markers.waitFor(
+        [&](const visualization_msgs::MarkerArray& a) {
+          for (const auto& m : a.markers)
+            if (m.header.stamp == stamp && m.ns == "outline" && m.id == track &&
+                m.action == visualization_msgs::Marker::ADD)
+              return true;
+          return false;
+        },
+        0.5);
+  }
+  ASSERT_TRUE(shown) << "no outline marker for the recognized " << label_;
+  bool outline = false, text = false;
+  for (const auto& m : shown->markers)
+  {
+    if (m.id != track)
+      continue;
+    if (m.ns == "outline")
+    {
+      outline = true;
+      EXPECT_EQ(m.type, visualization_msgs::Marker::LINE_STRIP);
+      EXPECT_EQ(m.header.frame_id, "camera");
+      EXPECT_GT(m.points.size(), 10u);
+      EXPECT_GT(m.pose.position.z, 0.0) << "the outline is not placed at the object's pose";
+    }
+    if (m.ns == "label")
+    {
+      text = true;
+      EXPECT_EQ(m.type, visualization_msgs::Marker::TEXT_VIEW_FACING);
+      EXPECT_NE(m.text.find(label_), std::string::npos) << m.text;
+      EXPECT_NE(m.text.find("#" + std::to_string(track)), std::string::npos) << m.text;
+    }
+  }
+  EXPECT_TRUE(outline && text) << "outline " << outline << ", label " << text;
+
+  // The object leaves: frames of the background alone until its track is lost.
+  const cv::Mat background = amcr_test::renderBackground(scene_);
+  visualization_msgs::MarkerArrayConstPtr deleted;
+  for (int frames = 0; frames < 60 && !deleted; ++frames)
+  {
+    const ros::Time stamp = nextStamp();
+    ASSERT_TRUE(publishAndWait(
+        frame(amcr_test::addNoise(background, scene_.clutter.noise_sigma, 777 + frames), enc::MONO8, stamp)));
+    deleted = markers.waitFor(
+        [&](const visualization_msgs::MarkerArray& a) {
+          int deletes = 0;
+          for (const auto& m : a.markers)
+            deletes += m.header.stamp == stamp && m.id == track && m.action == visualization_msgs::Marker::DELETE;
+          return deletes == 2;
+        },
+        0.5);
+  }
+  EXPECT_TRUE(deleted) << "the markers of track " << track << " were not deleted after the object left";
+  markers.shutdown();
 }
 
 // ~overlay is drawn while someone subscribes: bgr8, the input's header, and
@@ -507,7 +630,14 @@ TEST_F(RecognizerTest, DiagnosticsAndNoOverlayWithoutSubscribers)
   const long overlays = diagnosticNumber(*idle, "overlays drawn");
   EXPECT_GT(overlays, 0) << "OverlayWhileSubscribed (run before) drew none";
   EXPECT_EQ(diagnosticNumber(*idle, "prototypes"), 3);
-  EXPECT_TRUE(diagnosticValue(*idle, "input rate (Hz)"));
+  EXPECT_TRUE(diagnosticValue(*idle, "Actual frequency (Hz)", "input images"))
+      << "no FrequencyStatus of the input images";
+  bool delay = false;  // TimeStampStatus's keys ("Earliest timestamp delay", ...) end in ':' in some releases
+  for (const auto& status : idle->status)
+    if (status.name.find("input images") != std::string::npos)
+      for (const auto& kv : status.values)
+        delay = delay || kv.key.find("timestamp delay") != std::string::npos;
+  EXPECT_TRUE(delay) << "no TimeStampStatus of the input images";
   EXPECT_TRUE(diagnosticValue(*idle, "processing time, mean (ms)"));
   EXPECT_TRUE(diagnosticValue(*idle, "converged V-particles"));
   EXPECT_TRUE(diagnosticValue(*idle, "leading hypotheses"));
@@ -530,8 +660,10 @@ TEST_F(RecognizerTest, ResetRestartsTheFilter)
   auto before = publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp()));
   ASSERT_TRUE(before);
   ASSERT_GT(before->iteration, 1);
-  std_srvs::Empty empty;
-  ASSERT_TRUE(ros::service::call(node_ + "/reset", empty));
+  std_srvs::Trigger trigger;
+  ASSERT_TRUE(ros::service::call(node_ + "/reset", trigger));
+  EXPECT_TRUE(trigger.response.success);
+  EXPECT_NE(trigger.response.message.find("reset"), std::string::npos) << trigger.response.message;
   auto after = publishAndWait(frame(sceneFrame(), enc::MONO8, nextStamp()));
   ASSERT_TRUE(after);
   EXPECT_EQ(after->iteration, 1);
@@ -627,9 +759,141 @@ TEST_F(RecognizerTest, BadInputsLeaveTheNodeletAnswering)
   EXPECT_TRUE(waitForLog(rosgraph_msgs::Log::WARN, "time went backwards"));
 
   // Still answering.
-  std_srvs::Empty empty;
-  EXPECT_TRUE(ros::service::call(node_ + "/reset", empty));
+  std_srvs::Trigger trigger;
+  EXPECT_TRUE(ros::service::call(node_ + "/reset", trigger));
   EXPECT_TRUE(publishAndWait(frame(grey, enc::MONO8, nextStamp())));
+}
+// ~teach: a flag (not in the memory) cut from a frame is added to the running
+// filter and recognized in the next frames under another pose; bad requests
+// are refused with the reason and change nothing; ~remove_prototype undoes it
+// (the file saved on request stays).
+TEST_F(RecognizerTest, TeachAShapeFromTheImageAndRemoveIt)
+{
+  if (!check_teach_)
+    return;
+  ensurePrototypes();
+  ASSERT_TRUE(waitForNodeletSubscription());
+  ASSERT_TRUE(ros::service::waitForService(node_ + "/teach", ros::Duration(timeout_)));
+  auto current = prototypes_.waitFor([](const amcr::PrototypeTable& t) { return t.prototypes.size() == 3; }, timeout_);
+  ASSERT_TRUE(current);
+  const std::uint32_t version = current->version;
+
+  // The flag alone over clutter (no lines: a line across it would join its outline to the region's border).
+  amcr_test::Scene scene;
+  scene.size = scene_.size;
+  const amcr::Affine taught_at =
+      amcr_test::makeAffine(amcr_test::prototypeCentre(), {300.0, 240.0}, 0.2, 1.0, 1.0, 0.0);
+  scene.objects = {{ShapeId::kFlag, taught_at, 35.0}};
+  scene.clutter.lines = 0;
+  scene.clutter.seed = 21;
+  ASSERT_TRUE(publishAndWait(frame(amcr_test::addNoise(amcr_test::renderClean(scene), 6.0, 2100), enc::MONO8,
+                                   nextStamp())));
+  std::vector<cv::Point2f> outline;
+  for (const cv::Point2d& p : amcr_test::transformPoints(taught_at, amcr_test::shapePolygon(ShapeId::kFlag)))
+    outline.emplace_back(p);
+  const cv::Rect box = cv::boundingRect(outline);
+
+  auto call = [](amcr::TeachPrototype& srv) { return ros::service::call(node_ + "/teach", srv); };
+  auto request = [&](const std::string& label, int x, int y, int w, int h) {
+    amcr::TeachPrototype srv;
+    srv.request.label = label;
+    srv.request.rectangle.x_offset = static_cast<std::uint32_t>(x);
+    srv.request.rectangle.y_offset = static_cast<std::uint32_t>(y);
+    srv.request.rectangle.width = static_cast<std::uint32_t>(w);
+    srv.request.rectangle.height = static_cast<std::uint32_t>(h);
+    return srv;
+  };
+  const int x = box.x - 12, y = box.y - 12, w = box.width + 24, h = box.height + 24;
+
+  // Refused, nothing changes.
+  const std::vector<std::pair<amcr::TeachPrototype, std::string>> bad = {
+      {request("flag", 0, 0, 0, 0), "empty"},
+      {request("flag", 5000, 5000, 40, 40), "outside"},
+      {request(label_, x, y, w, h), "taken"},
+      {request("bad/label", x, y, w, h), "character"},
+  };
+  for (auto b : bad)
+  {
+    ASSERT_TRUE(call(b.first));
+    EXPECT_FALSE(b.first.response.success) << "'" << b.first.request.label << "' was taught";
+    EXPECT_NE(b.first.response.message.find(b.second), std::string::npos)
+        << "the answer does not say '" << b.second << "': " << b.first.response.message;
+    EXPECT_EQ(b.first.response.table_version, version);
+  }
+
+  // Taught and saved.
+  prototypes_.clear();
+  amcr::TeachPrototype good = request("flag", x, y, w, h);
+  good.request.save = true;
+  ASSERT_TRUE(call(good));
+  ASSERT_TRUE(good.response.success) << good.response.message;
+  EXPECT_EQ(good.response.table_version, version + 1);
+  EXPECT_EQ(good.response.prototype_id, 3);
+  EXPECT_EQ(good.response.saved_path, dir_->file("flag.png"));
+  EXPECT_FALSE(cv::imread(dir_->file("flag.png"), cv::IMREAD_GRAYSCALE).empty()) << "no saved silhouette";
+  auto table = prototypes_.waitFor([&](const amcr::PrototypeTable& t) { return t.version == version + 1; }, timeout_);
+  ASSERT_TRUE(table) << "no label table of version " << version + 1;
+  ASSERT_EQ(table->prototypes.size(), 4u);
+  EXPECT_EQ(table->prototypes[3].label, "flag");
+
+  // Recognized under another pose, in the running filter (no restart).
+  const amcr::Affine moved = amcr_test::makeAffine(amcr_test::prototypeCentre(), {360.0, 250.0}, -0.4, 0.85, 0.8, 0.1);
+  scene.objects = {{ShapeId::kFlag, moved, 35.0}};
+  const cv::Mat moved_clean = amcr_test::renderClean(scene);
+  std::vector<cv::Point2f> truth;
+  for (const cv::Point2d& p : amcr_test::transformPoints(moved, amcr_test::shapePolygon(ShapeId::kFlag)))
+    truth.emplace_back(p);
+  const cv::Rect2f truth_box = cv::boundingRect(truth);
+  const cv::Point2f truth_centre(truth_box.x + 0.5f * truth_box.width, truth_box.y + 0.5f * truth_box.height);
+  long first_iteration = -1;
+  int frames = 0;
+  double centre_error = -1.0;
+  for (; frames < max_frames_; ++frames)
+  {
+    auto r = publishAndWait(frame(amcr_test::addNoise(moved_clean, 6.0, 2200 + frames), enc::MONO8, nextStamp()));
+    ASSERT_TRUE(r);
+    if (first_iteration < 0)
+      first_iteration = r->iteration;
+    EXPECT_EQ(r->prototype_table_version, version + 1);
+    bool found = false;
+    for (const auto& o : r->objects)
+    {
+      if (o.label != "flag" || o.outline.points.empty())
+        continue;
+      std::vector<cv::Point2f> points;
+      for (const auto& p : o.outline.points)
+        points.emplace_back(p.x, p.y);
+      const cv::Rect2f b = cv::boundingRect(points);
+      centre_error = cv::norm(cv::Point2f(b.x + 0.5f * b.width, b.y + 0.5f * b.height) - truth_centre);
+      found = centre_error < corner_tolerance_ && std::abs(b.width / truth_box.width - 1.0) < 0.15 &&
+              std::abs(b.height / truth_box.height - 1.0) < 0.15;
+    }
+    if (found)
+      break;
+  }
+  EXPECT_GT(first_iteration, 1) << "teaching restarted the filter";
+  ASSERT_LT(frames, max_frames_) << "the taught flag was not recognized within " << max_frames_
+                                 << " frames (last centre error " << centre_error << " px)";
+  ROS_INFO("taught flag recognized %d frames later, centre error %.2f px", frames + 1, centre_error);
+
+  // Removed: the table goes back to 3, the file stays; teaching it again with save is refused.
+  amcr::RemovePrototype remove;
+  remove.request.label = "flag";
+  ASSERT_TRUE(ros::service::call(node_ + "/remove_prototype", remove));
+  EXPECT_TRUE(remove.response.success) << remove.response.message;
+  EXPECT_EQ(remove.response.num_removed, 1);
+  EXPECT_EQ(remove.response.table_version, version + 2);
+  EXPECT_TRUE(prototypes_.waitFor([&](const amcr::PrototypeTable& t) { return t.version == version + 2 && t.prototypes.size() == 3; },
+                                  timeout_));
+  ASSERT_TRUE(ros::service::call(node_ + "/remove_prototype", remove));
+  EXPECT_FALSE(remove.response.success);
+  EXPECT_NE(remove.response.message.find("no label"), std::string::npos) << remove.response.message;
+  EXPECT_EQ(remove.response.table_version, version + 2);
+  ASSERT_TRUE(call(good));
+  EXPECT_FALSE(good.response.success);
+  EXPECT_NE(good.response.message.find("exists"), std::string::npos) << good.response.message;
+  EXPECT_EQ(good.response.table_version, version + 2);
+  std::remove(dir_->file("flag.png").c_str());
 }
 }  // namespace
 

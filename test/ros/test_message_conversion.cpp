@@ -99,7 +99,7 @@ TEST(MessageConversion, LabelTableListsLabelsWithTheirInstances)
   memory.add("disc", disc, params, "disc/small.png");
   memory.add("disc", box, params, "disc/square.png");
   memory.add("box", box, params);
-  const amcr::PrototypeTable table = amcr_ros::toMsg(&memory, "/prototypes", ros::Time(5));
+  const amcr::PrototypeTable table = amcr_ros::toMsg(&memory, "/prototypes", 7u, ros::Time(5));
   EXPECT_EQ(table.labels, (std::vector<std::string>{"disc", "box"}));
   ASSERT_EQ(table.prototypes.size(), 3u);
   EXPECT_EQ(table.prototypes[0].label, "disc");
@@ -110,5 +110,6 @@ TEST(MessageConversion, LabelTableListsLabelsWithTheirInstances)
   EXPECT_EQ(table.prototypes[2].instance, "box");
   EXPECT_EQ(table.prototypes[2].width, 80);
   EXPECT_EQ(table.directory, "/prototypes");
+  EXPECT_EQ(table.version, 7u);
 }
 }  // namespace
