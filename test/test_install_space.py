@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """The installed package runs (issue 18): from the install space alone (`catkin_make install`; its
-setup.bash sourced in an environment without the devel space or the source tree), `roslaunch amcr
-amcr.launch` starts the nodelet from the installed library, loads drawn prototypes, answers an image
-with recognitions (the installed Python messages read them) and ~reset; amcr_offline runs.
+local_setup.bash sourced over the system's ROS, in an environment without the devel space or the
+source tree), `roslaunch amcr amcr.launch` starts the nodelet from the installed library, loads
+drawn prototypes, answers an image with recognitions (the installed Python messages read them) and
+~reset; amcr_offline runs.
 
 scripts/test builds the install space and names it in AMCR_INSTALL_SPACE (and sets
 AMCR_REQUIRE_INSTALL=1, so that a missing one fails); run by hand without it, the test skips with a
@@ -63,7 +64,7 @@ def free_port():
 
 class InstallSpace(unittest.TestCase):
     def setUp(self):
-        if not INSTALL or not os.path.isfile(os.path.join(INSTALL, "setup.bash")):
+        if not INSTALL or not os.path.isfile(os.path.join(INSTALL, "local_setup.bash")):
             if os.environ.get("AMCR_REQUIRE_INSTALL") == "1":
                 self.fail("no install space at AMCR_INSTALL_SPACE='%s' (catkin_make install failed?)" % INSTALL)
             self.skipTest("no install space: scripts/test builds one (catkin_make install) and names it in "
@@ -71,9 +72,16 @@ class InstallSpace(unittest.TestCase):
         self.work = tempfile.mkdtemp(prefix="amcr_install_")
         self.processes = []
         port = free_port()
+        # The system's ROS only (the prefixes outside this workspace), then the install space on top of
+        # it (local_setup.bash: not the workspaces setup.bash chains as they were at configure time,
+        # the devel space among them).
+        workspace = os.path.dirname(os.path.realpath(INSTALL))
+        system = [p for p in os.environ.get("CMAKE_PREFIX_PATH", "/usr").split(":")
+                  if p and not os.path.realpath(p).startswith(workspace)]
         clean = {"PATH": "/usr/bin:/bin", "HOME": self.work, "LANG": "C.UTF-8", "ROS_IP": "127.0.0.1",
-                 "ROS_HOME": os.path.join(self.work, "ros"), "ROS_MASTER_URI": "http://127.0.0.1:%d" % port}
-        dump = subprocess.run(["bash", "-c", 'set +u; source "$0/setup.bash" >/dev/null && env -0', INSTALL],
+                 "ROS_HOME": os.path.join(self.work, "ros"), "ROS_MASTER_URI": "http://127.0.0.1:%d" % port,
+                 "CMAKE_PREFIX_PATH": ":".join(system or ["/usr"])}
+        dump = subprocess.run(["bash", "-c", 'set +u; source "$0/local_setup.bash" >/dev/null && env -0', INSTALL],
                               env=clean, stdout=subprocess.PIPE, check=True, timeout=TIMEOUT)
         self.env = dict(item.split("=", 1) for item in dump.stdout.decode().split("\0") if "=" in item)
         self.port = port
@@ -109,8 +117,9 @@ class InstallSpace(unittest.TestCase):
         import numpy as np
         # The environment knows the install space only (it may lie inside the checkout: .build/ws/install).
         for entry in filter(None, self.env.get("ROS_PACKAGE_PATH", "").split(":")):
-            self.assertTrue(entry.startswith(INSTALL) or not entry.startswith(SOURCE),
-                            "ROS_PACKAGE_PATH holds the source tree or the devel space: " + entry)
+            outside = not any(entry.startswith(p) for p in (SOURCE, os.path.dirname(os.path.realpath(INSTALL))))
+            self.assertTrue(entry.startswith(INSTALL) or outside,
+                            "ROS_PACKAGE_PATH holds the source tree or the workspace's src or devel: " + entry)
         found = self.run_in_install("rospack", "find", "amcr")
         self.assertEqual(found.stdout.strip(), os.path.join(INSTALL, "share", "amcr"), found.stdout)
         offline = self.run_in_install(os.path.join(INSTALL, "lib", "amcr", "amcr_offline"), "--help")

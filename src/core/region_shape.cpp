@@ -12,17 +12,11 @@ namespace
 {
 constexpr int kFillShift = 4;  // fractional bits of the region's corners in cv::fillPoly
 
-/// Twice the signed area of a polygon (shoelace).
-double twiceArea(const std::vector<cv::Point2d>& polygon)
+/// Area of a polygon, px^2 (whatever its orientation).
+double area(const std::vector<cv::Point2d>& polygon)
 {
-  double a = 0.0;
-  for (std::size_t i = 0; i < polygon.size(); ++i)
-  {
-    const cv::Point2d& p = polygon[i];
-    const cv::Point2d& q = polygon[(i + 1) % polygon.size()];
-    a += p.x * q.y - q.x * p.y;
-  }
-  return a;
+  std::vector<cv::Point2f> points(polygon.begin(), polygon.end());
+  return std::abs(cv::contourArea(points));
 }
 
 /// The part of `polygon` on the side of the line x (axis 0) or y (axis 1) =
@@ -93,7 +87,7 @@ CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, 
       return failure("the region is empty: its point " + std::to_string(i) + " is not finite");
     polygon.emplace_back(region[i].x, region[i].y);
   }
-  if (std::abs(twiceArea(polygon)) < 1.0)
+  if (area(polygon) < 0.5)
     return failure("the region is empty: its polygon has zero area");
 
   // The image.
@@ -105,7 +99,7 @@ CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, 
 
   // The region's mask, clipped to the image, and its inset part.
   polygon = clipToImage(polygon, image.size());
-  if (polygon.size() < 3 || std::abs(twiceArea(polygon)) < 1.0)
+  if (polygon.size() < 3 || area(polygon) < 0.5)
     return failure("the region lies outside the image (" + std::to_string(image.cols) + " x " +
                    std::to_string(image.rows) + " px)");
   std::vector<cv::Point> corners;

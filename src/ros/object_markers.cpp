@@ -6,6 +6,8 @@
 #include <limits>
 #include <string>
 
+#include <opencv2/imgproc.hpp>
+
 namespace amcr_ros
 {
 namespace
@@ -133,36 +135,14 @@ std_msgs::ColorRGBA trackColor(std::int32_t track_id)
   double hue = std::fmod(static_cast<double>(track_id) * kGoldenConjugate, 1.0);
   if (hue < 0)
     hue += 1;
-  const double s = 0.85, v = 1.0;
-  const double h6 = hue * 6;
-  const int sector = std::min(static_cast<int>(h6), 5);
-  const double f = h6 - sector, p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
-  double r = v, g = t, b = p;
-  switch (sector)
-  {
-    case 0:
-      r = v, g = t, b = p;
-      break;
-    case 1:
-      r = q, g = v, b = p;
-      break;
-    case 2:
-      r = p, g = v, b = t;
-      break;
-    case 3:
-      r = p, g = q, b = v;
-      break;
-    case 4:
-      r = t, g = p, b = v;
-      break;
-    default:
-      r = v, g = p, b = q;
-      break;
-  }
+  // Saturation 0.85, value 1; OpenCV's float HSV takes the hue in degrees.
+  const cv::Mat3f hsv(1, 1, cv::Vec3f(static_cast<float>(360.0 * hue), 0.85f, 1.0f));
+  cv::Mat3f rgb;
+  cv::cvtColor(hsv, rgb, cv::COLOR_HSV2RGB);
   std_msgs::ColorRGBA color;
-  color.r = static_cast<float>(r);
-  color.g = static_cast<float>(g);
-  color.b = static_cast<float>(b);
+  color.r = rgb(0, 0)[0];
+  color.g = rgb(0, 0)[1];
+  color.b = rgb(0, 0)[2];
   color.a = 1.f;
   return color;
 }

@@ -14,7 +14,6 @@ import subprocess
 import sys
 import tempfile
 import threading
-import time
 import unittest
 
 import cv2
@@ -23,6 +22,7 @@ import roslib.packages
 import rospy
 import rostest
 from cv_bridge import CvBridge
+from ros_waiting import wait_for
 
 from amcr.msg import Recognitions
 from amcr.srv import LoadPrototypes
@@ -32,16 +32,6 @@ IMAGE_TOPIC = "/camera/image_raw"
 SCORE_TOL = 1e-4      # amcr_offline writes 4 decimals
 AFFINE_TOL = 1e-5     # 6 decimals
 PIXEL_TOL = 0.01      # 2 decimals
-
-
-def wait_for(condition, timeout):
-    """Polls `condition` on wall time (the clock is simulated here); False after `timeout` s."""
-    deadline = time.monotonic() + timeout
-    while not condition():
-        if time.monotonic() > deadline or rospy.is_shutdown():
-            return False
-        time.sleep(0.05)
-    return True
 
 
 class BagVsOffline(unittest.TestCase):

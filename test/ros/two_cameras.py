@@ -12,7 +12,6 @@ import shutil
 import sys
 import tempfile
 import threading
-import time
 import unittest
 
 import cv2
@@ -21,6 +20,7 @@ import rosgraph
 import rospy
 import rostest
 import tf2_ros
+from ros_waiting import wait_for
 from sensor_msgs.msg import CameraInfo, Image
 
 from amcr.msg import Recognitions
@@ -83,15 +83,6 @@ def camera_info(frame_id):
     info.R = [1, 0, 0, 0, 1, 0, 0, 0, 1]
     info.P = [FOCAL, 0, 319.5, 0, 0, FOCAL, 239.5, 0, 0, 0, 1, 0]
     return info
-
-
-def wait_for(condition, timeout):
-    deadline = time.monotonic() + timeout
-    while not condition():
-        if time.monotonic() > deadline or rospy.is_shutdown():
-            return False
-        time.sleep(0.02)
-    return True
 
 
 class TwoCameras(unittest.TestCase):
