@@ -7,6 +7,7 @@
 #include <string>
 
 #include <opencv2/imgproc.hpp>
+#include <tf2/LinearMath/Quaternion.h>
 
 namespace amcr_ros
 {
@@ -49,17 +50,16 @@ Box boundingBox(const std::vector<geometry_msgs::Point>& points)
 /// v rotated by q (normalised here; the identity when q is zero or not finite).
 geometry_msgs::Point rotate(const geometry_msgs::Quaternion& q, const geometry_msgs::Point& v)
 {
-  const double norm = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  const tf2::Quaternion rotation(q.x, q.y, q.z, q.w);
+  const double norm = rotation.length();
   if (!(norm > 0) || !std::isfinite(norm))
     return v;
-  const double x = q.x / norm, y = q.y / norm, z = q.z / norm, w = q.w / norm;
-  // v' = v + 2 w (u x v) + 2 u x (u x v), u = (x, y, z).
-  const double tx = 2 * (y * v.z - z * v.y), ty = 2 * (z * v.x - x * v.z), tz = 2 * (x * v.y - y * v.x);
-  geometry_msgs::Point r;
-  r.x = v.x + w * tx + (y * tz - z * ty);
-  r.y = v.y + w * ty + (z * tx - x * tz);
-  r.z = v.z + w * tz + (x * ty - y * tx);
-  return r;
+  const tf2::Vector3 r = tf2::quatRotate(rotation / norm, tf2::Vector3(v.x, v.y, v.z));
+  geometry_msgs::Point out;
+  out.x = r.x();
+  out.y = r.y();
+  out.z = r.z();
+  return out;
 }
 
 bool samePoint(const geometry_msgs::Point& a, const geometry_msgs::Point& b)

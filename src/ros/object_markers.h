@@ -29,9 +29,8 @@ namespace amcr_ros
 /// - namespace "outline": a LINE_STRIP with pose = Recognition.pose and the outline's points (so they stay in
 ///   the plane frame), closed (the first point repeated at the end unless it is already there); the line width
 ///   1.5 % of the larger side of the outline's bounding box, at least 1 mm; opaque, in trackColor(track_id).
-/// - namespace "label": a white TEXT_VIEW_FACING "<label> #<track_id>", with " (tentative)" appended while TENTATIVE;
-/// its
-///   height 20 % of the larger side, at least 1 cm. Placed above the outline: in the plane frame at x = the
+/// - namespace "label": a white TEXT_VIEW_FACING "<label> #<track_id>", with " (tentative)" appended while
+///   TENTATIVE; its height 20 % of the larger side, at least 1 cm. Placed above the outline: in the plane frame at x = the
 ///   bounding box's centre, y = one text height above the box's top edge (y is down), z = one text height
 ///   towards the camera (-z), then mapped into the camera frame by the pose (orientation identity).
 visualization_msgs::MarkerArray objectMarkers(const amcr::Recognitions& recognitions,

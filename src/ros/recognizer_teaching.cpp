@@ -113,9 +113,10 @@ std::string RecognizerRos::teachLocked(const amcr::TeachPrototype::Request& requ
     taught_.push_back({request.label, cut.silhouette.clone()});
   response.prototype_id = static_cast<int>(memory->size()) - 1;
   response.saved_path = saved;
-  ROS_INFO("taught '%s' from a %d x %d px region of the last image (prototype %d%s); label table version %u",
-           request.label.c_str(), cut.bounds.width, cut.bounds.height, response.prototype_id,
-           saved.empty() ? ", not saved" : (", saved to " + saved).c_str(), table_version_);
+  const std::string where = saved.empty() ? "not saved" : "saved to " + saved;
+  ROS_INFO("taught '%s' from a %d x %d px cut of the last image (prototype %d, %s); label table version %u",
+           request.label.c_str(), cut.bounds.width, cut.bounds.height, response.prototype_id, where.c_str(),
+           table_version_);
   return "";
 }
 
