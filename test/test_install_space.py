@@ -72,12 +72,11 @@ class InstallSpace(unittest.TestCase):
         self.work = tempfile.mkdtemp(prefix="amcr_install_")
         self.processes = []
         port = free_port()
-        # The system's ROS only (the prefixes outside this workspace), then the install space on top of
-        # it (local_setup.bash: not the workspaces setup.bash chains as they were at configure time,
-        # the devel space among them).
-        workspace = os.path.dirname(os.path.realpath(INSTALL))
+        # The system's ROS only (the prefixes that are no catkin workspace: a devel or install space
+        # holds a .catkin file), then the install space on top of it (local_setup.bash: not the
+        # workspaces setup.bash chains as they were at configure time, the devel space among them).
         system = [p for p in os.environ.get("CMAKE_PREFIX_PATH", "/usr").split(":")
-                  if p and not os.path.realpath(p).startswith(workspace)]
+                  if p and not os.path.exists(os.path.join(p, ".catkin"))]
         clean = {"PATH": "/usr/bin:/bin", "HOME": self.work, "LANG": "C.UTF-8", "ROS_IP": "127.0.0.1",
                  "ROS_HOME": os.path.join(self.work, "ros"), "ROS_MASTER_URI": "http://127.0.0.1:%d" % port,
                  "CMAKE_PREFIX_PATH": ":".join(system or ["/usr"])}
@@ -115,11 +114,10 @@ class InstallSpace(unittest.TestCase):
     def test_amcr_launch_runs_from_the_install_space(self):
         import cv2
         import numpy as np
-        # The environment knows the install space only (it may lie inside the checkout: .build/ws/install).
+        # The environment knows the install space and the system's ROS only.
         for entry in filter(None, self.env.get("ROS_PACKAGE_PATH", "").split(":")):
-            outside = not any(entry.startswith(p) for p in (SOURCE, os.path.dirname(os.path.realpath(INSTALL))))
-            self.assertTrue(entry.startswith(INSTALL) or outside,
-                            "ROS_PACKAGE_PATH holds the source tree or the workspace's src or devel: " + entry)
+            self.assertTrue(entry.startswith(INSTALL) or not os.path.realpath(entry).startswith(SOURCE),
+                            "ROS_PACKAGE_PATH holds the source tree or the workspace around it: " + entry)
         found = self.run_in_install("rospack", "find", "amcr")
         self.assertEqual(found.stdout.strip(), os.path.join(INSTALL, "share", "amcr"), found.stdout)
         offline = self.run_in_install(os.path.join(INSTALL, "lib", "amcr", "amcr_offline"), "--help")
