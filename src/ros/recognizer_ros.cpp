@@ -320,7 +320,7 @@ bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_ove
     }
 
     std::lock_guard<std::mutex> lock(mutex_);
-    last_image_ = image->image;  // what ~teach cuts from, also before any prototype is there
+    last_image_ = image;  // what ~teach cuts from, also before any prototype is there
     if (!recognizer_)
     {
       stats_.skipped();

@@ -27,6 +27,7 @@
 #include <string>
 
 #include <boost/thread/recursive_mutex.hpp>
+#include <cv_bridge/cv_bridge.h>
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <dynamic_reconfigure/server.h>
 #include <opencv2/core.hpp>
@@ -116,8 +117,10 @@ private:
   /// Swaps in an edited `memory` (lock held): extended (the filter goes on) or not (it restarts);
   /// the version counts up and the table is published.
   void swapEditedMemory(std::shared_ptr<const amcr::PrototypeMemory> memory, bool extended);
-  /// teach() under the lock: the reason of a refusal, empty on success (then `response` is filled).
-  std::string teachLocked(const amcr::TeachPrototype::Request& request, amcr::TeachPrototype::Response& response);
+  /// teach(): the reason of a refusal, empty on success (then `response` is filled). Takes the lock to
+  /// check the request and copy what the cut needs, cuts the shape and builds its table without it
+  /// (images go on being recognized), and takes it again to swap the memory in.
+  std::string teachShape(const amcr::TeachPrototype::Request& request, amcr::TeachPrototype::Response& response);
   /// Resets when time goes backwards in the input; notes a change of image size (lock held).
   void followInput(const ros::Time& stamp, const cv::Size& size);
   void publishPrototypeTable();  // lock held
@@ -139,7 +142,9 @@ private:
   ros::Time last_stamp_;
   cv::Size last_size_;
   bool fresh_ = true;   // no image processed since restart()
-  cv::Mat last_image_;  // the last image the core saw (~teach cuts from it)
+  // The last image the core saw (~teach cuts from it). The pointer, not its cv::Mat: the Mat may
+  // share the message's buffer, which the pointer keeps alive.
+  cv_bridge::CvImageConstPtr last_image_;
   std::uint32_t table_version_ = 0;
   /// Prototypes taught in this session and not saved (kept over a rebuild of the tables), and labels
   /// removed from the directory's memory; both forgotten by ~load_prototypes.
