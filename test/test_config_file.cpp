@@ -54,7 +54,11 @@ TEST(ConfigFile, LargeMemoryFileSetsCompactTablesOnly)
   const amcr::Params defaults;
   EXPECT_EQ(loaded.table_stride, 2);
   for (const amcr::ParameterInfo& info : amcr::parameterTable())
+  {
     if (info.name != "table_stride")
+    {
       EXPECT_DOUBLE_EQ(amcr::getParameter(loaded, info.name), amcr::getParameter(defaults, info.name)) << info.name;
+    }
+  }
 }
 }  // namespace
