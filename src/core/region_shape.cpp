@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include <opencv2/imgproc.hpp>
 
@@ -53,18 +52,17 @@ std::vector<cv::Point2d> clipToImage(std::vector<cv::Point2d> polygon, const cv:
   return polygon;
 }
 
-std::string number(double value)
-{
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 CutShape failure(const std::string& why)
 {
   CutShape cut;
   cut.why = why;
   return cut;
+}
+
+CutShape outsideImage(const cv::Size& size)
+{
+  return failure("the region lies outside the image (" + std::to_string(size.width) + " x " +
+                 std::to_string(size.height) + " px)");
 }
 }  // namespace
 
@@ -100,8 +98,7 @@ CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, 
   // The region's mask, clipped to the image, and its inset part.
   polygon = clipToImage(polygon, image.size());
   if (polygon.size() < 3 || area(polygon) < 0.5)
-    return failure("the region lies outside the image (" + std::to_string(image.cols) + " x " +
-                   std::to_string(image.rows) + " px)");
+    return outsideImage(image.size());
   std::vector<cv::Point> corners;
   for (const cv::Point2d& p : polygon)
     corners.emplace_back(cvRound(p.x * (1 << kFillShift)), cvRound(p.y * (1 << kFillShift)));
@@ -109,8 +106,7 @@ CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, 
   cv::fillPoly(full_mask, std::vector<std::vector<cv::Point>>{corners}, cv::Scalar(255), cv::LINE_8, kFillShift);
   const cv::Rect box = cv::boundingRect(full_mask);
   if (box.area() == 0)
-    return failure("the region lies outside the image (" + std::to_string(image.cols) + " x " +
-                   std::to_string(image.rows) + " px)");
+    return outsideImage(image.size());
   // Everything below works in `roi`: the region's box, with room for the smoothing.
   const int pad = kRegionInset + 2 + static_cast<int>(std::ceil(3.0 * std::max(0.0, params.blur_sigma)));
   const cv::Rect roi = (box + cv::Size(2 * pad, 2 * pad) - cv::Point(pad, pad)) & cv::Rect(cv::Point(), image.size());
@@ -138,7 +134,7 @@ CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, 
   cv::Canny(grey, edges, 2.0 * step, 4.0 * step, 3, true);
   edges &= inner;
   if (cv::countNonZero(edges) == 0)
-    return failure("no edges inside the region: nothing in it steps by edge_threshold = " + number(step) +
+    return failure("no edges inside the region: nothing in it steps by edge_threshold = " + formatNumber(step) +
                    " grey levels");
 
   // Gaps closed; the outer contours are the candidates.
@@ -175,7 +171,7 @@ CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, 
   if (best < 0)
     return failure("no closed outline inside the region: none of its " + std::to_string(contours.size()) +
                    " edge contours stays clear of the region's border and encloses at least " +
-                   number(std::round(least_area)) + " px");
+                   formatNumber(std::round(least_area)) + " px");
 
   // The silhouette: the filled outline, cropped with a margin.
   fill.setTo(0);

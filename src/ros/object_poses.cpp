@@ -144,14 +144,14 @@ void ObjectPoses::fill(const std::vector<amcr::RecognizedObject>& objects, const
 std::vector<geometry_msgs::Point> ObjectPoses::planeOutline(const amcr::Prototype& prototype,
                                                           const PlanarTarget& target)
 {
-  const cv::Matx23d& m = prototype.tableToOriginal();
   std::vector<geometry_msgs::Point> points;
   points.reserve(prototype.outline().size());
   for (const amcr::OutlinePoint& p : prototype.outline())
   {
+    const cv::Point2d original = amcr::applyAffine(prototype.tableToOriginal(), p.position);
     geometry_msgs::Point q;
-    q.x = (m(0, 0) * p.position.x + m(0, 1) * p.position.y + m(0, 2) - target.origin.x) * target.metres_per_pixel;
-    q.y = (m(1, 0) * p.position.x + m(1, 1) * p.position.y + m(1, 2) - target.origin.y) * target.metres_per_pixel;
+    q.x = (original.x - target.origin.x) * target.metres_per_pixel;
+    q.y = (original.y - target.origin.y) * target.metres_per_pixel;
     points.push_back(q);
   }
   return points;

@@ -51,9 +51,6 @@ public:
   void fill(const std::vector<amcr::RecognizedObject>& objects, const amcr::PrototypeMemory& memory,
             amcr::Recognitions& out, PlaneOutlines* outlines = nullptr);
 
-  /// The topic camera_info is read from.
-  const std::string& cameraInfoTopic() const { return camera_info_topic_; }
-
 private:
   void loadParameters(const ros::NodeHandle& private_nh, const std::string& image_topic);
   void cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg);

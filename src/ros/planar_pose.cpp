@@ -11,30 +11,16 @@
 
 namespace amcr_ros
 {
-namespace
-{
-cv::Point2d apply(const cv::Matx23d& m, const cv::Point2d& p)
-{
-  return {m(0, 0) * p.x + m(0, 1) * p.y + m(0, 2), m(1, 0) * p.x + m(1, 1) * p.y + m(1, 2)};
-}
-
-bool allFinite(const cv::Matx33d& m)
-{
-  for (int i = 0; i < 9; ++i)
-    if (!std::isfinite(m.val[i]))
-      return false;
-  return true;
-}
-}  // namespace
-
 PlanarTarget planarTarget(const amcr::Prototype& prototype, double metres_per_pixel)
 {
   const cv::Matx23d& to_original = prototype.tableToOriginal();
   const double right = prototype.width() - 1.0, bottom = prototype.height() - 1.0;
   PlanarTarget target;
-  target.corners = {apply(to_original, {0.0, 0.0}), apply(to_original, {right, 0.0}),
-                    apply(to_original, {right, bottom}), apply(to_original, {0.0, bottom})};
-  target.origin = apply(to_original, prototype.centre());  // the table is centred on the shape's box
+  target.corners = {amcr::applyAffine(to_original, {0.0, 0.0}), amcr::applyAffine(to_original, {right, 0.0}),
+                    amcr::applyAffine(to_original, {right, bottom}),
+                    amcr::applyAffine(to_original, {0.0, bottom})};
+  // The table is centred on the shape's box.
+  target.origin = amcr::applyAffine(to_original, prototype.centre());
   target.metres_per_pixel = metres_per_pixel;
   return target;
 }
@@ -78,7 +64,7 @@ bool pnpCamera(const sensor_msgs::CameraInfo& info, bool rectified, PnpCamera& c
     {
       const cv::Matx34d p = model.projectionMatrix();
       const cv::Matx33d matrix(p(0, 0), p(0, 1), p(0, 2), p(1, 0), p(1, 1), p(1, 2), p(2, 0), p(2, 1), p(2, 2));
-      if (!allFinite(matrix) || !(matrix(0, 0) > 0.0) || !(matrix(1, 1) > 0.0))
+      if (!cv::checkRange(matrix) || !(matrix(0, 0) > 0.0) || !(matrix(1, 1) > 0.0))
       {
         why = "camera_info has zeros in P (fx' = " + std::to_string(p(0, 0)) +
               "): a rectified image needs the rectified camera's projection";

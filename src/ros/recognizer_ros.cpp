@@ -165,16 +165,18 @@ std::string RecognizerRos::reset()
   return what;
 }
 
+amcr::PrototypeMemory RecognizerRos::loadDirectory(const std::string& directory, const amcr::Params& params)
+{
+  return amcr::PrototypeMemory::loadDirectory(
+      directory, params, [](const std::string& w) { ROS_WARN("prototypes: %s", w.c_str()); },
+      [](const std::string& line) { ROS_INFO("%s", line.c_str()); });
+}
+
 std::string RecognizerRos::loadLocked(const std::string& directory)
 {
   try
   {
-    std::vector<std::string> warnings;
-    auto memory = std::make_shared<amcr::PrototypeMemory>(amcr::PrototypeMemory::loadDirectory(
-        directory, params_, [&warnings](const std::string& w) { warnings.push_back(w); },
-        [](const std::string& line) { ROS_INFO("%s", line.c_str()); }));
-    for (const std::string& w : warnings)
-      ROS_WARN("prototypes: %s", w.c_str());
+    auto memory = std::make_shared<amcr::PrototypeMemory>(loadDirectory(directory, params_));
     std::unique_ptr<amcr::Recognizer> replacement;
     if (recognizer_)
       recognizer_->setMemory(memory);  // the same recognizer: track ids go on counting

@@ -109,6 +109,8 @@ private:
   void restart(std::unique_ptr<amcr::Recognizer> replacement = nullptr);
   /// reconfigure() under the lock: throws when `config` is refused, before anything changes.
   void applyConfigLocked(const amcr::AMCRConfig& config, std::uint32_t level);
+  /// PrototypeMemory::loadDirectory with its skipped files logged as warnings and its progress as info.
+  static amcr::PrototypeMemory loadDirectory(const std::string& directory, const amcr::Params& params);
   /// Loads a memory and swaps it in (lock held). Returns the error text, empty on success.
   std::string loadLocked(const std::string& directory);
   /// The memory of memory_directory_ (none when empty) built with `params`, with this session's edits

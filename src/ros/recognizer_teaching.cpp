@@ -208,9 +208,7 @@ std::shared_ptr<const amcr::PrototypeMemory> RecognizerRos::rebuildMemory(const 
 {
   auto memory = std::make_shared<amcr::PrototypeMemory>();
   if (!memory_directory_.empty())
-    *memory = amcr::PrototypeMemory::loadDirectory(
-        memory_directory_, params, [](const std::string& w) { ROS_WARN("prototypes: %s", w.c_str()); },
-        [](const std::string& line) { ROS_INFO("%s", line.c_str()); });
+    *memory = loadDirectory(memory_directory_, params);
   for (const std::string& label : removed_labels_)
     memory->remove(label);
   for (const TaughtShape& shape : taught_)

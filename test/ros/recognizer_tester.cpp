@@ -320,9 +320,7 @@ protected:
     const amcr::Params params;
     const amcr::Prototype prototype(label_, amcr_test::drawPrototype(shapeByName(label_)), params.prototype_size,
                                     params.edge_threshold, params.blur_sigma);
-    const cv::Matx23d& m = prototype.tableToOriginal();
-    const cv::Point2d c = prototype.centre();
-    return {m(0, 0) * c.x + m(0, 1) * c.y + m(0, 2), m(1, 0) * c.x + m(1, 1) * c.y + m(1, 2)};
+    return amcr::applyAffine(prototype.tableToOriginal(), prototype.centre());
   }
 
   static std::string node_, image_topic_, label_, info_topic_, frame_prefix_;
