@@ -6,6 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "candidate_contours.h"
+
 namespace amcr_bench
 {
 namespace
@@ -53,26 +55,15 @@ HuMoments::HuMoments(const std::vector<PrototypeImage>& prototypes, const HuConf
 {
   for (const PrototypeImage& p : prototypes)
   {
-    std::vector<std::vector<cv::Point>> contours;
-    cv::findContours(p.mask > 127, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-    if (contours.empty())
+    std::vector<cv::Point> outline = prototypeOutline(p.mask);
+    if (outline.empty())
       continue;
-    const auto largest = std::max_element(contours.begin(), contours.end(), [](const auto& a, const auto& b) {
-      return cv::contourArea(a) < cv::contourArea(b);
-    });
-    models_.push_back({p.label, *largest});
+    models_.push_back({p.label, std::move(outline)});
   }
 }
 
 std::vector<Detection> HuMoments::detect(const cv::Mat& grey)
 {
-  std::vector<cv::Mat> binaries(4);
-  cv::threshold(grey, binaries[0], 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
-  cv::threshold(grey, binaries[1], 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
-  cv::adaptiveThreshold(grey, binaries[2], 255, cv::ADAPTIVE_THRESH_MEAN_C, cv::THRESH_BINARY, config_.adaptive_block,
-                        -config_.adaptive_c);
-  cv::adaptiveThreshold(grey, binaries[3], 255, cv::ADAPTIVE_THRESH_MEAN_C, cv::THRESH_BINARY_INV,
-                        config_.adaptive_block, config_.adaptive_c);
   const double max_area = config_.max_area_share * grey.total();
 
   // Per prototype, its best contour below the distance limit.
@@ -80,25 +71,20 @@ std::vector<Detection> HuMoments::detect(const cv::Mat& grey)
   std::vector<std::vector<cv::Point>> best_contour(models_.size());
   std::vector<int> best_id(models_.size(), -1);  // which contour, to report each at most once
   int id = 0;
-  for (const cv::Mat& binary : binaries)
+  for (const auto& contour : candidateContours(grey, config_.adaptive_block, config_.adaptive_c))
   {
-    std::vector<std::vector<cv::Point>> contours;
-    cv::findContours(binary, contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
-    for (const auto& contour : contours)
+    ++id;
+    const double area = cv::contourArea(contour);
+    if (area < config_.min_area || area > max_area)
+      continue;
+    for (std::size_t i = 0; i < models_.size(); ++i)
     {
-      ++id;
-      const double area = cv::contourArea(contour);
-      if (area < config_.min_area || area > max_area)
-        continue;
-      for (std::size_t i = 0; i < models_.size(); ++i)
+      const double d = cv::matchShapes(models_[i].contour, contour, cv::CONTOURS_MATCH_I1, 0);
+      if (d < best[i])
       {
-        const double d = cv::matchShapes(models_[i].contour, contour, cv::CONTOURS_MATCH_I1, 0);
-        if (d < best[i])
-        {
-          best[i] = d;
-          best_contour[i] = contour;
-          best_id[i] = id;
-        }
+        best[i] = d;
+        best_contour[i] = contour;
+        best_id[i] = id;
       }
     }
   }
