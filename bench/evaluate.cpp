@@ -1,8 +1,10 @@
 // amcr_evaluate: runs AMCR and the baselines on the same frames of one benchmark suite
 // (as bench/make_sequences writes it) and writes what each reports, frame by frame.
 //
-//   amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght]
+//   amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght,line2d,sc]
 //                 [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N] [--prototypes DIR]
+//                 [--every METHOD=N,...] [--target-size MIN,MAX] [--anisotropy MAX]
+//                 [--line2d-threshold PERCENT]
 //
 // The memory is <suite>/prototypes unless --prototypes names another folder (the `memory-growth`
 // suite runs the same sequences once per memory, prototypes-3 ... prototypes-70). For the baselines,
@@ -17,13 +19,25 @@
 // and <out>/init.<method>.json (set-up time; for amcr the lookup tables' size). A file that
 // exists is not computed again (files are written under a temporary name, then renamed), so
 // an interrupted run resumes. Frames are processed on one core (OpenCV threads off). GHT is slow: it runs on --ght-frames (0-based; -1 = the last)
-// of the first --ght-sequences sequences only.
+// of the first --ght-sequences sequences only. `--every line2d=5` runs a method on every 5th frame
+// (frames 5, 10, ... numbered from 1, and the last) of every sequence: each frame on its own, so the
+// figures at those frames are what it does on every frame, at a fifth of the cost.
+//
+// LINE-2D (line2d) and shape contexts (sc) are built when OpenCV has its rgbd (contrib) and shape
+// modules; without them they are left out of the default --methods, and asking for them says why.
+// Both are set for the poses the suite draws: --target-size (the longer side of a target's bounding
+// box in the frames, px; default 110,260) and --anisotropy (the largest ratio of the singular values
+// of a target's affine; default 1.7, the aspect and shear of the `paper` suites; 3 for `oblique`).
+// --line2d-threshold overrides LINE-2D's similarity threshold (to choose it on sequences of a seed
+// that the benchmark does not score).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -40,6 +54,12 @@
 #include "baselines/generalized_hough.h"
 #include "baselines/hu_moments.h"
 #include "baselines/orb_homography.h"
+#ifdef AMCR_HAVE_LINE2D
+#include "baselines/line2d.h"
+#endif
+#ifdef AMCR_HAVE_SHAPE_CONTEXT
+#include "baselines/shape_context.h"
+#endif
 
 namespace fs = std::filesystem;
 using amcr_bench::Detection;
@@ -48,13 +68,30 @@ using amcr_bench::PrototypeImage;
 
 namespace
 {
+/// The methods this build has, in the order they run by default.
+std::vector<std::string> defaultMethods()
+{
+  std::vector<std::string> methods = {"amcr", "orb", "hu", "ght"};
+#ifdef AMCR_HAVE_LINE2D
+  methods.push_back("line2d");
+#endif
+#ifdef AMCR_HAVE_SHAPE_CONTEXT
+  methods.push_back("sc");
+#endif
+  return methods;
+}
+
 struct Options
 {
   std::string suite, out, config = "config/amcr.yaml", prototypes;  // prototypes: default <suite>/prototypes
-  std::vector<std::string> methods = {"amcr", "orb", "hu", "ght"};
+  std::vector<std::string> methods = defaultMethods();
   std::uint64_t seed = 1;
   std::vector<int> ght_frames = {9, 29, 59, -1};
   int ght_sequences = 1000000;
+  std::map<std::string, int> every;  ///< method -> run on every Nth frame (and the last)
+  double min_target_size = 110, max_target_size = 260;  ///< longer side of a target in the frames, px
+  double max_anisotropy = 1.7;
+  float line2d_threshold = 0;  ///< 0: Line2dConfig's
 };
 
 std::vector<std::string> split(const std::string& text)
@@ -70,8 +107,10 @@ std::vector<std::string> split(const std::string& text)
 [[noreturn]] void usage(const std::string& error)
 {
   std::cerr << "amcr_evaluate: " << error << "\n"
-            << "usage: amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght]\n"
-            << "                     [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N] [--prototypes DIR]\n";
+            << "usage: amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght,line2d,sc]\n"
+            << "                     [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N] [--prototypes DIR]\n"
+            << "                     [--every METHOD=N,...] [--target-size MIN,MAX] [--anisotropy MAX]\n"
+            << "                     [--line2d-threshold PERCENT]\n";
   std::exit(2);
 }
 
@@ -104,6 +143,34 @@ Options parse(int argc, char** argv)
       o.ght_sequences = std::stoi(value);
     else if (key == "--prototypes")
       o.prototypes = value;
+    else if (key == "--every")
+    {
+      for (const std::string& item : split(value))
+      {
+        const std::size_t eq = item.find('=');
+        const int n = eq == std::string::npos ? 0 : std::atoi(item.c_str() + eq + 1);
+        if (n < 1)
+          usage("--every wants METHOD=N with N >= 1, got " + item);
+        o.every[item.substr(0, eq)] = n;
+      }
+    }
+    else if (key == "--target-size")
+    {
+      const std::vector<std::string> range = split(value);
+      if (range.size() != 2 || (o.min_target_size = std::atof(range[0].c_str())) <= 0 ||
+          (o.max_target_size = std::atof(range[1].c_str())) < o.min_target_size)
+        usage("--target-size wants MIN,MAX in px with 0 < MIN <= MAX, got " + value);
+    }
+    else if (key == "--line2d-threshold")
+    {
+      if ((o.line2d_threshold = std::atof(value.c_str())) <= 0 || o.line2d_threshold > 100)
+        usage("--line2d-threshold wants a similarity in (0, 100] percent, got " + value);
+    }
+    else if (key == "--anisotropy")
+    {
+      if ((o.max_anisotropy = std::atof(value.c_str())) < 1)
+        usage("--anisotropy wants a ratio >= 1, got " + value);
+    }
     else
       usage("unknown option " + key);
   }
@@ -190,6 +257,23 @@ double millisecondsSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// The 0-based frames of a sequence of `count` frames that `method` runs on; empty: every frame.
+std::set<int> framesToRun(const std::string& method, int count, const Options& o)
+{
+  std::set<int> only;
+  if (method == "ght")
+    for (int f : o.ght_frames)
+      only.insert(f < 0 ? count + f : f);
+  const auto every = o.every.find(method);
+  if (every != o.every.end() && every->second > 1)
+  {
+    for (int k = every->second - 1; k < count; k += every->second)
+      only.insert(k);
+    only.insert(count - 1);
+  }
+  return only;
+}
+
 /// Builds one method; `init` receives its set-up figures as JSON members.
 std::unique_ptr<Method> makeMethod(const std::string& name, const Options& o, const std::vector<PrototypeImage>& prototypes,
                                    std::string& init)
@@ -211,6 +295,41 @@ std::unique_ptr<Method> makeMethod(const std::string& name, const Options& o, co
     return std::make_unique<amcr_bench::HuMoments>(prototypes);
   if (name == "ght")
     return std::make_unique<amcr_bench::GeneralizedHough>(prototypes);
+  if (name == "line2d")
+  {
+#ifdef AMCR_HAVE_LINE2D
+    amcr_bench::Line2dConfig config;
+    config.min_size = o.min_target_size;
+    config.max_size = o.max_target_size;
+    config.max_anisotropy = o.max_anisotropy;
+    // Oblique views: one more level of stretches per factor 1.6 of anisotropy beyond the first.
+    config.anisotropy_levels = std::max(1, static_cast<int>(std::lround(std::log(o.max_anisotropy) / std::log(1.6))));
+    if (o.line2d_threshold > 0)
+      config.threshold = o.line2d_threshold;
+    auto line2d = std::make_unique<amcr_bench::Line2d>(prototypes, config);
+    init = "\"templates\": " + std::to_string(line2d->templateCount());
+    return line2d;
+#else
+    usage("line2d is not in this build: OpenCV's rgbd module (Debian and Ubuntu: libopencv-contrib-dev) was "
+          "missing when amcr_evaluate was built");
+#endif
+  }
+  if (name == "sc")
+  {
+#ifdef AMCR_HAVE_SHAPE_CONTEXT
+    // The candidates are contours, measured by their own bounding box: a squashed view makes the
+    // longer side up to sqrt(anisotropy) longer or shorter, and a silhouette fills only part of its
+    // prototype image.
+    amcr_bench::ShapeContextConfig config;
+    config.min_size = 0.6 * o.min_target_size / std::sqrt(o.max_anisotropy);
+    config.max_size = o.max_target_size * std::sqrt(o.max_anisotropy);
+    config.max_anisotropy = std::max(config.max_anisotropy, o.max_anisotropy);
+    return std::make_unique<amcr_bench::ShapeContext>(prototypes, config);
+#else
+    usage("sc is not in this build: OpenCV's shape module (Debian and Ubuntu: libopencv-shape-dev) was missing "
+          "when amcr_evaluate was built");
+#endif
+  }
   usage("unknown method " + name);
 }
 }  // namespace
@@ -259,14 +378,12 @@ int main(int argc, char** argv)
         cv::glob((sequences[s] / "frames" / "*.png").string(), files);
         std::sort(files.begin(), files.end());
         const int count = static_cast<int>(files.size());
-        std::set<int> only;
-        for (int f : o.ght_frames)
-          only.insert(f < 0 ? count + f : f);
+        const std::set<int> only = framesToRun(name, count, o);
         method->reset();
         std::string lines;
         for (int k = 0; k < count; ++k)
         {
-          if (name == "ght" && !only.count(k))
+          if (!only.empty() && !only.count(k))
             continue;
           const cv::Mat frame = cv::imread(files[k], cv::IMREAD_GRAYSCALE);
           if (frame.empty())

@@ -14,7 +14,9 @@ AMCR_WS="$(realpath -m "${AMCR_WS:-$AMCR_REPO/.build/ws}")"
 AMCR_JOBS="${AMCR_JOBS:-2}"
 
 # Debian packages: the recipe of docs/ros-on-debian.md plus what this package and its later
-# issues use. opencv-doc provides the silhouettes and photos of the demo sequence.
+# issues use. opencv-doc provides the silhouettes and photos of the demo sequence. The benchmark's
+# peers and their tests use OpenCV's rgbd (contrib: LINE-2D) and shape (shape contexts) modules;
+# libopencv-dev depends on both, named here because the tests need them.
 AMCR_PACKAGES=(
   build-essential ros-base-dev rosbash libimage-transport-dev libcv-bridge-dev
   libtf2-ros-dev libtf2-eigen-dev python3-rostest python3-cv-bridge python3-opencv
@@ -23,6 +25,7 @@ AMCR_PACKAGES=(
   pluginlib-dev ros-message-generation libstd-srvs-dev libgeometry-msgs-dev libsensor-msgs-dev
   librostest-dev python3-rosbag python3-diagnostic-msgs python3-std-srvs python3-rosparam catkin-lint
   libimage-geometry-dev libvisualization-msgs-dev python3-visualization-msgs python3-tf2-ros
+  libopencv-contrib-dev libopencv-shape-dev
 )
 
 # scripts/fuzz: clang and its libFuzzer runtime. On bookworm the runtime (libclang_rt.fuzzer) is in
