@@ -58,7 +58,7 @@ import statistics
 import cv2
 import numpy as np
 
-METHODS = ["amcr", "orb", "hu", "ght"]
+METHODS = ["amcr", "line2d", "sc", "orb", "hu", "ght"]
 SUITES = ["paper", "mpeg7-70", "within-class", "within-class-1330", "within-class-85", "similar", "clutter-only",
           "two-objects", "copies", "real-photos", "oblique", "real-camera", "paper-hd", "clutter-only-hd"]
 # The shown instance is in no memory (the label is the class): no affine or correspondence error.
@@ -69,7 +69,8 @@ GROWTH_AIM = 1.5  # issue 14: time per frame with 70 prototypes at most 1.5x tha
 HD_AIM = 0.10  # issue 14: 1280x720 top-1 within 10 points of 640x480
 ANISOTROPY_BANDS = [(1.5, 2.0), (2.0, 2.5), (2.5, 3.0)]
 RIGHT_PLACE = 0.10  # real-camera: every corner within this share of the target's image diagonal
-METHOD_NAMES = {"amcr": "AMCR", "orb": "ORB+RANSAC", "hu": "Hu moments", "ght": "GHT Guil"}
+METHOD_NAMES = {"amcr": "AMCR", "line2d": "LINE-2D", "sc": "shape contexts", "orb": "ORB+RANSAC", "hu": "Hu moments",
+                "ght": "GHT Guil"}
 CHECKPOINTS = [10, 30, 60]
 INSTANCE_SUITES = ["two-objects", "copies", "real-photos"]  # issue 15: every instance in view is to be reported
 INSTANCE_RADIUS = (10.0, 0.3)  # a report finds an instance within max(10 px, 0.3 x the instance's size)
@@ -580,6 +581,8 @@ def fmt(value, kind):
         return "never" if value == math.inf else "%g" % value
     if kind == "px":
         return "%.2f" % value
+    if kind == "count":
+        return "%d" % value
     if kind == "ms":
         return "%.1f" % value if value < 100 else "%.0f" % value
     return "%.3f" % value
@@ -614,6 +617,8 @@ def suite_table(suite, metrics, has_target):
     row("time per frame, mean (ms)", lambda m: m["time_mean_ms"], "ms")
     row("time per frame, median (ms)", lambda m: m["time_median_ms"], "ms")
     row("set-up (prototypes), s", lambda m: m.get("init", {}).get("init_ms", 0) / 1000, "px")
+    if any("templates" in metrics[m].get("init", {}) for m in methods):
+        row("templates", lambda m: m.get("init", {}).get("templates"), "count")
     return "\n".join(rows)
 
 
@@ -633,6 +638,43 @@ def plot_accuracy(plt, suite, metrics, path):
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
+
+
+def plot_peers(plt, everything, path):
+    """Every method over the suites: top-1 at frame 60 (false positives per frame where nothing is shown) and the
+    mean time per frame, side by side."""
+    suites = list(everything)
+    methods = [m for m in METHODS if any(m in everything[s] for s in suites)]
+    if not suites or not methods:
+        return False
+    fig, (top, time) = plt.subplots(2, 1, figsize=(max(6, 0.9 * len(suites) + 2), 6.4), sharex=True)
+    width = 0.8 / len(methods)
+    for i, method in enumerate(methods):
+        xs = [k + (i - (len(methods) - 1) / 2) * width for k in range(len(suites))]
+        heights, times = [], []
+        for suite in suites:
+            m = everything[suite].get(method)
+            value = None
+            if m:
+                value = top1_at(m, 60) if m.get("top1") else -m["fp_per_frame"]
+            heights.append(value if value is not None else 0.0)
+            times.append(m["time_mean_ms"] if m and m.get("time_mean_ms") else 0.0)
+        top.bar(xs, heights, width, label=METHOD_NAMES[method])
+        time.bar(xs, times, width, label=METHOD_NAMES[method])
+    top.axhline(0, color="black", linewidth=0.5)
+    top.set_ylabel("top-1 at frame 60\n(below 0: false positives per frame)", fontsize=8)
+    top.set_ylim(-1.02, 1.02)
+    top.grid(alpha=0.3, axis="y")
+    top.legend(fontsize=7, ncol=3, loc="lower left")
+    time.set_yscale("log")
+    time.set_ylabel("time per frame, mean (ms)", fontsize=8)
+    time.grid(alpha=0.3, axis="y", which="both")
+    time.set_xticks(range(len(suites)))
+    time.set_xticklabels(suites, rotation=30, ha="right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return True
 
 
 def speed_section(out, plt):
@@ -848,7 +890,8 @@ def best_updates(out):
 def summary_section(everything, updates=None, growth=None):
     """One table over the suites, and the aims of the issue against the figures."""
     lines = ["## Summary", "",
-             "Top-1 at frame 60 (at the last frame where sequences are shorter; GHT: at the frames it ran), "
+             "Top-1 at frame 60 (at the last frame where sequences are shorter; GHT: at the frames it ran; LINE-2D "
+             "runs on every 10th frame, shape contexts on every 60th, frame 60 and the last among them), "
              "false positives per frame, median affine corner error (px), mean time per frame (ms):", "",
              "| suite | " + " | ".join(METHOD_NAMES[m] for m in METHODS) + " |", "|---" * (len(METHODS) + 1) + "|"]
     for suite, metrics in everything.items():
@@ -969,7 +1012,10 @@ def main():
         parts += ["## %s" % GROWTH, "", growth_section(growth), ""]
     speed = speed_section(args.out, plt)
     updates = best_updates(args.out)
-    parts[4:4] = [summary_section(everything, updates, growth), ""]
+    summary = [summary_section(everything, updates, growth), ""]
+    if plt and plot_peers(plt, everything, os.path.join(args.out, "plots", "peers.png")):
+        summary += ["![every method on every suite](plots/peers.png)", ""]
+    parts[4:4] = summary
     parts += ["## Speed", "", speed, latency_section(args.out)]
     if plt is None:
         parts.append("(plots skipped: python3-matplotlib is not installed)")
