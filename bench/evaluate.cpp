@@ -302,8 +302,6 @@ std::unique_ptr<Method> makeMethod(const std::string& name, const Options& o, co
     config.min_size = o.min_target_size;
     config.max_size = o.max_target_size;
     config.max_anisotropy = o.max_anisotropy;
-    // Oblique views: one more level of stretches per factor 1.6 of anisotropy beyond the first.
-    config.anisotropy_levels = std::max(1, static_cast<int>(std::lround(std::log(o.max_anisotropy) / std::log(1.6))));
     if (o.line2d_threshold > 0)
       config.threshold = o.line2d_threshold;
     auto line2d = std::make_unique<amcr_bench::Line2d>(prototypes, config);

@@ -43,10 +43,10 @@ struct Pose
 {
   ShapeId shape;
   double rotation_deg;
-  double size;      ///< the prototype image's longer side in the frame at the area scale, px
-  double aspect;    ///< x scale over y scale
+  double size;    ///< the prototype image's longer side in the frame at the area scale, px
+  double aspect;  ///< x scale over y scale
   double shear;
-  bool inverted;    ///< a light print on a dark background
+  bool inverted;  ///< a light print on a dark background
   cv::Size frame;
 };
 
@@ -112,7 +112,10 @@ TEST(Line2dBaseline, ClutterAloneGivesNoDetection)
   }
 }
 
-TEST(Line2dBaseline, EmptyFrameGivesNoDetection) { EXPECT_TRUE(line2d().detect(cv::Mat()).empty()); }
+TEST(Line2dBaseline, EmptyFrameGivesNoDetection)
+{
+  EXPECT_TRUE(line2d().detect(cv::Mat()).empty());
+}
 
 // A prototype with nothing to match is a broken memory: refused, naming it, rather than left out silently.
 TEST(Line2dBaseline, RefusesAPrototypeWithoutSilhouette)

@@ -27,8 +27,8 @@ std::vector<double> templateSizes(const Line2dConfig& c)
 }
 
 /// The identity, and per level and axis the area-kept stretch R(phi) diag(sqrt k, 1/sqrt k) R(-phi). The levels'
-/// ln k are 2/3 of ln max_anisotropy (one level), 2/5 and 4/5 (two), ...: the gap at the rim is half of that
-/// between levels, as a target beyond the rim is nearer the outer level.
+/// ln k are 2/3 of ln max_anisotropy (one level), 2/5 and 4/5 (two), ...: the gap at the rim, which only the
+/// outer level covers, is half of that between levels.
 std::vector<cv::Matx22d> templateStretches(const Line2dConfig& c)
 {
   std::vector<cv::Matx22d> stretches = {cv::Matx22d::eye()};
@@ -52,8 +52,8 @@ std::vector<cv::Matx22d> templateStretches(const Line2dConfig& c)
 cv::Ptr<cv::linemod::Detector> makeDetector(const Line2dConfig& c)
 {
   const cv::linemod::ColorGradient defaults;
-  const std::vector<cv::Ptr<cv::linemod::Modality>> modalities = {cv::makePtr<cv::linemod::ColorGradient>(
-      c.weak_threshold, defaults.num_features, defaults.strong_threshold)};
+  const std::vector<cv::Ptr<cv::linemod::Modality>> modalities = {
+      cv::makePtr<cv::linemod::ColorGradient>(c.weak_threshold, defaults.num_features, defaults.strong_threshold)};
   return cv::makePtr<cv::linemod::Detector>(modalities, std::vector<int>{5, 8});
 }
 }  // namespace
@@ -98,7 +98,7 @@ Line2d::Line2d(const std::vector<PrototypeImage>& prototypes, const Line2dConfig
     const std::string class_id = std::to_string(i);
     for (int t = 0; t < static_cast<int>(models_[i].views.size()); ++t)
       detector_->addSyntheticTemplate(parts[i]->getTemplates(class_id, t), class_id);
-    parts[i].release();  // the templates are held twice only one prototype at a time
+    parts[i].release();  // at the peak, every template once and one prototype's twice
     for (const View& view : models_[i].views)
     {
       min_frame_.width = std::max(min_frame_.width, view.box.width + refine_margin);

@@ -21,14 +21,16 @@ struct Line2dConfig
   double min_size = 110.0;
   double max_size = 260.0;
   double size_step = 1.12;  ///< largest factor between neighbouring sizes (geometric, both ends kept)
-  /// Degrees (rounded to divide the full circle). A template 2.5 degrees off a 170 px target keeps a
-  /// similarity of about 92%, 3.75 degrees off 84%, 5 degrees off 79%, while the benchmark's clutter
-  /// reaches 90%: 5-degree steps found the target first in 68% of the paper suite's frames, 7.5 and 10 in 60%.
+  // Figures below: seed 1's paper suite (68-136 frames), the share of frames whose best report has the target's label.
+  /// Degrees (rounded to divide the full circle). On drawn scenes a template 2.5 degrees off a 170 px target
+  /// keeps a similarity of about 92%, 3.75 degrees off 84%, 5 degrees off 79%, and the benchmark's clutter
+  /// reaches 90%: 5-degree steps give 68%, 7.5- and 10-degree steps 60%.
   double rotation_step = 5.0;
-  // Stretches (area kept) for the aspect and shear of a target: the largest ratio of the singular values
-  // of its affine, sampled in anisotropy_levels steps above 1, each along stretch_axes directions of
-  // the prototype over 180 degrees (4 directions found the target first in 46% of the paper suite's
-  // frames, 6 in 60%, at 7.5-degree rotations).
+  // Stretches (area kept) for a target's aspect and shear: up to max_anisotropy, the largest ratio of the
+  // singular values of its affine, in anisotropy_levels steps, each along stretch_axes directions over 180
+  // degrees. At 7.5-degree rotations 6 directions give 60%, 4 give 46%, no stretch 32%; a second level 65%
+  // at 1.9 times the templates. On the oblique suite (max_anisotropy 3.1) a second level drops 35% to 23%:
+  // strongly stretched templates match the clutter.
   double max_anisotropy = 1.6;
   int anisotropy_levels = 1;
   int stretch_axes = 6;
@@ -37,12 +39,13 @@ struct Line2dConfig
   /// frame, as the best top-1 less false reports per frame: 90 gives 54% and 0.67 / 0.93 false reports
   /// per frame, 92 52% and 0.18 / 0.15, 93 49% and 0.07 / 0.05, 95 36% and 0.01 / 0.
   float threshold = 93.f;
-  /// Gradient magnitude (3x3 Sobel after linemod's 7x7 smoothing) that gives a frame pixel an orientation:
-  /// linemod's 10 lets the background photos' texture match; the prints' edges reach 100 and more.
+  /// Gradient magnitude (3x3 Sobel after linemod's 7x7 smoothing) a frame pixel needs for an orientation:
+  /// 60 is an edge of 30-40 grey levels, below the prints' outlines, above much of the background photos'
+  /// texture, which linemod's default of 10 lets match (60: 65%; 10: 60% and 7 times the time per frame).
   float weak_threshold = 60.f;
   double nms_share = 0.5;  ///< a match is dropped near a better one: centres closer than this x the smaller size
   int max_reports = 5;     ///< per frame
-  double ink = 40.0;        ///< the template's print, grey levels (dark on light; either polarity matches)
+  double ink = 40.0;       ///< the template's print, grey levels (dark on light; either polarity matches)
   double paper = 200.0;
   double print_blur = 1.0;  ///< Gaussian sigma of the print, template px
   int mask_dilation = 2;    ///< px around the silhouette: linemod takes features on the mask's outer ring
