@@ -39,7 +39,6 @@
 #include <iostream>
 #include <map>
 #include <memory>
-#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -257,21 +256,27 @@ double millisecondsSince(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// The 0-based frames of a sequence of `count` frames that `method` runs on; empty: every frame.
-std::set<int> framesToRun(const std::string& method, int count, const Options& o)
+/// Which of the 0-based frames of a sequence of `count` frames `method` runs on: GHT on --ght-frames,
+/// a method given to --every on every Nth frame and the last, any other on every frame.
+std::vector<bool> framesToRun(const std::string& method, int count, const Options& o)
 {
-  std::set<int> only;
+  const auto every = o.every.find(method);
+  const bool every_nth = every != o.every.end() && every->second > 1;
+  std::vector<bool> run(count, method != "ght" && !every_nth);
   if (method == "ght")
     for (int f : o.ght_frames)
-      only.insert(f < 0 ? count + f : f);
-  const auto every = o.every.find(method);
-  if (every != o.every.end() && every->second > 1)
+    {
+      const int k = f < 0 ? count + f : f;
+      if (k >= 0 && k < count)
+        run[k] = true;
+    }
+  if (every_nth && count > 0)
   {
     for (int k = every->second - 1; k < count; k += every->second)
-      only.insert(k);
-    only.insert(count - 1);
+      run[k] = true;
+    run[count - 1] = true;
   }
-  return only;
+  return run;
 }
 
 /// Builds one method; `init` receives its set-up figures as JSON members.
@@ -376,12 +381,12 @@ int main(int argc, char** argv)
         cv::glob((sequences[s] / "frames" / "*.png").string(), files);
         std::sort(files.begin(), files.end());
         const int count = static_cast<int>(files.size());
-        const std::set<int> only = framesToRun(name, count, o);
+        const std::vector<bool> run = framesToRun(name, count, o);
         method->reset();
         std::string lines;
         for (int k = 0; k < count; ++k)
         {
-          if (!only.empty() && !only.count(k))
+          if (!run[k])
             continue;
           const cv::Mat frame = cv::imread(files[k], cv::IMREAD_GRAYSCALE);
           if (frame.empty())
