@@ -21,7 +21,8 @@ public:
   std::vector<Detection> detect(const cv::Mat& grey) override
   {
     std::vector<Detection> found;
-    for (const amcr::RecognizedObject& o : recognizer_.step(grey).objects)
+    last_ = recognizer_.step(grey);
+    for (const amcr::RecognizedObject& o : last_.objects)
     {
       Detection d;
       d.label = o.label;
@@ -36,7 +37,12 @@ public:
     return found;  // in the recognizer's order: best score first
   }
 
+  /// The recognizer and its last step's result, for the recall funnel (recall_funnel.h).
+  const amcr::Recognizer& recognizer() const { return recognizer_; }
+  const amcr::RecognitionResult& lastResult() const { return last_; }
+
 private:
   amcr::Recognizer recognizer_;
+  amcr::RecognitionResult last_;
 };
 }  // namespace amcr_bench

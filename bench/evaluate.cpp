@@ -16,7 +16,10 @@
 //    "prototype_to_image": [a,b,c,d,e,f], "track_id": n, "state": s, "correspondences": [[xi,yi,xp,yp], ...]}]}
 // ("track_id" and "state": the recognizer's track of the object and where it is in its life cycle,
 // "tentative" | "confirmed" | "held"; amcr only, the baselines keep no tracks and omit both)
-// and <out>/init.<method>.json (set-up time; for amcr the lookup tables' size). A file that
+// and <out>/init.<method>.json (set-up time; for amcr the lookup tables' size). For amcr also
+// <out>/<sequence>.amcr.funnel.jsonl, the recall funnel (recall_funnel.h) of every true object in
+// every frame, and as its last line the sequence's summary: the frames that reached each stage and
+// the first stage none reached. A file that
 // exists is not computed again (files are written under a temporary name, then renamed), so
 // an interrupted run resumes. Frames are processed on one core (OpenCV threads off). GHT is slow: it runs on --ght-frames (0-based; -1 = the last)
 // of the first --ght-sequences sequences only. `--every line2d=5` runs a method on every 5th frame
@@ -50,6 +53,8 @@
 #include "amcr/params.h"
 #include "amcr/prototype_memory.h"
 #include "amcr_method.h"
+#include "recall_funnel.h"
+#include "sequence_truth.h"
 #include "baselines/generalized_hough.h"
 #include "baselines/hu_moments.h"
 #include "baselines/orb_homography.h"
@@ -383,7 +388,13 @@ int main(int argc, char** argv)
         const int count = static_cast<int>(files.size());
         const std::vector<bool> run = framesToRun(name, count, o);
         method->reset();
-        std::string lines;
+        // AMCR: the recall funnel against the sequence's truth, outside the timed step.
+        const auto* amcr_method = dynamic_cast<const amcr_bench::AmcrMethod*>(method.get());
+        const std::vector<amcr_bench::TruthFrame> truth =
+            amcr_method ? amcr_bench::readSequenceTruth((sequences[s] / "truth.json").string())
+                        : std::vector<amcr_bench::TruthFrame>();
+        amcr_bench::FunnelRecorder funnel;
+        std::string lines, funnel_lines;
         for (int k = 0; k < count; ++k)
         {
           if (!run[k])
@@ -394,7 +405,17 @@ int main(int argc, char** argv)
           const auto t0 = std::chrono::steady_clock::now();
           const std::vector<Detection> found = method->detect(frame);
           lines += jsonLine(k, millisecondsSince(t0), found) + "\n";
+          if (amcr_method && k < static_cast<int>(truth.size()))
+          {
+            const std::vector<amcr_bench::ObjectFunnel> objects =
+                amcr_bench::measureFunnel(amcr_method->recognizer(), amcr_method->lastResult(), truth[k]);
+            funnel.add(k, objects);
+            funnel_lines += amcr_bench::funnelJson(k, objects) + "\n";
+          }
         }
+        if (amcr_method)
+          writeAtomically(fs::path(o.out) / (sequences[s].filename().string() + ".amcr.funnel.jsonl"),
+                          funnel_lines + amcr_bench::funnelSummaryJson(funnel.summaries()) + "\n");
         writeAtomically(result, lines);
       }
     }

@@ -58,6 +58,8 @@ import statistics
 import cv2
 import numpy as np
 
+import funnel_report  # bench/funnel_report.py, beside this script
+
 METHODS = ["amcr", "line2d", "sc", "orb", "hu", "ght"]
 SUITES = ["paper", "mpeg7-70", "within-class", "within-class-1330", "within-class-85", "similar", "clutter-only",
           "two-objects", "copies", "real-photos", "oblique", "real-camera", "paper-hd", "clutter-only-hd"]
@@ -1003,14 +1005,20 @@ def main():
     found = [os.path.basename(d) for d in glob.glob(os.path.join(args.out, "results", "*"))]
     real = {}
     growth = {}
+    funnels = {}
     for suite in [s for s in SUITES if s in found] + sorted(s for s in found if s not in SUITES):
         if suite == GROWTH:
             growth = growth_metrics(args.out)
             continue
+        funnel = funnel_report.suite_funnel(os.path.join(args.out, "results", suite))
+        if funnel:
+            funnels[suite] = funnel
         if suite == "real-camera":
             real = real_camera_metrics(args.out, suite, METHODS)
             if real:
                 parts += ["## %s" % suite, "", REAL_TEXT, "", real_camera_table(real), ""]
+                if funnel:
+                    parts += [funnel_report.funnel_table(funnel), ""]
             continue
         metrics, has_target = suite_metrics(args.out, suite, METHODS)
         if not metrics:
@@ -1027,6 +1035,8 @@ def main():
             parts += [breakdown(args.out, suite), ""]
         if suite == "oblique":
             parts += [anisotropy_table(args.out, suite), ""]
+        if funnel:
+            parts += [funnel_report.funnel_table(funnel), ""]
         if plt and has_target:
             plot_accuracy(plt, suite, metrics, os.path.join(args.out, "plots", "accuracy_%s.png" % suite))
             parts += ["![%s](plots/accuracy_%s.png)" % (suite, suite), ""]
@@ -1039,6 +1049,8 @@ def main():
     summary = [summary_section(everything, updates, growth), ""]
     if plt and plot_peers(plt, everything, os.path.join(args.out, "plots", "peers.png")):
         summary += ["![every method on every suite](plots/peers.png)", ""]
+    if funnels:
+        summary += [funnel_report.overview_table(funnels), ""]
     parts[4:4] = summary
     parts += ["## Speed", "", speed, latency_section(args.out)]
     if plt is None:
@@ -1046,15 +1058,17 @@ def main():
     with open(os.path.join(args.out, "report.md"), "w") as f:
         f.write("\n".join(parts) + "\n")
     # The short version: the run, the summary, the speed (for docs/benchmark-latest.md).
-    short = ["# AMCR benchmark: summary", "", args.header, "", summary_section(everything, updates, growth), "",
-             "## Speed", "", speed.replace(
+    short = ["# AMCR benchmark: summary", "", args.header, "", summary_section(everything, updates, growth), ""]
+    if funnels:
+        short += [funnel_report.overview_table(funnels), ""]
+    short += ["## Speed", "", speed.replace(
                  "![time per iteration](plots/time_per_iteration.png)",
                  "The plot of time per iteration against particle count is `plots/time_per_iteration.png`"
                  " in the run's output folder (not in the repository)."), latency_section(args.out)]
     with open(os.path.join(args.out, "summary.md"), "w") as f:
         f.write("\n".join(short) + "\n")
     with open(os.path.join(args.out, "metrics.json"), "w") as f:
-        json.dump(dict(everything, **({"real-camera": real} if real else {}),
+        json.dump(dict(everything, **({"real-camera": real} if real else {}), **({"funnel": funnels} if funnels else {}),
                        **({GROWTH: {str(n): m for n, m in growth.items()}} if growth else {})), f, indent=1, default=str)
     print("report: %s" % os.path.join(args.out, "report.md"))
 

@@ -39,6 +39,10 @@ struct Extraction
   /// The objects at or above the decision threshold, best score first
   /// (track ids not assigned yet).
   std::vector<RecognizedObject> objects;
+  /// Every object the extraction fitted and verified on the image, reported
+  /// or not, best score first: what a diagnosis of a miss reads (the
+  /// benchmark's recall funnel), never fed back.
+  std::vector<RecognizedObject> verified;
   ExtractionFeedback feedback;
 };
 

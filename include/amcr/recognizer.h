@@ -91,6 +91,11 @@ public:
   /// the context prior (params.prototype_priors) as particle counts.
   const std::vector<int>& priorSlots() const { return filter_.priorSlots(); }
   long iteration() const { return iteration_; }
+  /// Every object the last step's extraction fitted and verified on the
+  /// image, reported or not, best score first, in input px: why a shape in
+  /// view was not reported (a miss at the threshold, at the support, or no
+  /// candidate at all).
+  const std::vector<RecognizedObject>& verifiedCandidates() const { return verified_; }
   /// The filter as the overlay draws it: each V-particle with its dominant
   /// prototype (as the result extraction defines it) and its flow trail, and
   /// the M-particles per prototype.
@@ -113,5 +118,6 @@ private:
   int next_v_ = 0;  // the V-particle the current round goes on with (frame budget)
   std::vector<FlowTrail> trails_;  // per V-particle, of the last step's flow (empty: none), working px
   WorkingScale scale_;             // of the last step (empty sizes before the first)
+  std::vector<RecognizedObject> verified_;  // of the last step, input px
 };
 }  // namespace amcr

@@ -325,6 +325,8 @@ Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& sca
   std::vector<Candidate> candidates = fitCandidates(in, fitStarts(in, tracks));
   extraction.feedback.evidence = verificationEvidence(in, candidates);
   extraction.feedback.leading = leadingHypotheses(in, candidates);
+  for (const Candidate& candidate : candidates)
+    extraction.verified.push_back(candidate.object);
   report(in.params, tracks, candidates, extraction);
   return extraction;
 }

@@ -67,6 +67,7 @@ void Recognizer::reset()
   tracker_.reset();
   budget_.reset();
   trails_.clear();
+  verified_.clear();
   iteration_ = 0;
   next_v_ = 0;
 }
@@ -126,6 +127,7 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   // The life cycle (track_registry.h), then attention: what is held is
   // explained, and V-resampling looks elsewhere.
   result.objects = std::move(extraction.objects);
+  verified_ = std::move(extraction.verified);
   if (!params_.optical_flow)
     tracker_.holdStill();
   tracker_.assign(result.objects, scan_image.size(), result.lost);  // the tracks stay in working px, as the filter
@@ -133,7 +135,11 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   if (round_done && iteration_ % params_.v_resample_interval == 0)
     trails_ = inherit(trails_, filter_.resampleV(scanner, extraction.feedback.object_v_particles));
   if (!scale_.identity())
+  {
     scaleResult(result, scale_.toInput());
+    for (RecognizedObject& o : verified_)
+      mapImageSide(o, scale_.toInput());
+  }
   if (budget_.limited())
     budget_.recordExtraction(budget_.now() - extraction_start);
 
