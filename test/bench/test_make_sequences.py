@@ -3,7 +3,8 @@
 holding every target) and the 1280x720 suites (`paper-hd`: the `paper` frames and truth, scaled);
 of the issue-15 suites (`copies`: apart and where the truth says; `real-photos`: the six parts of
 pca_test1 where the truth says); of the several-instance memories (`within-class-1330`,
-`within-class-85`: the held-out instance in no memory, shown, and the `within-class` frames elsewhere)
+`within-class-85`: the held-out instance in no memory, shown, and the `within-class` frames elsewhere),
+of `real-camera-cube` (its truth.json; a report of the face a quarter turn round is at the right place)
 and of bench/report.py's instance matching.
 Needs the MPEG-7 silhouettes (AMCR_DATA, default ../shared/data from the checkout) and opencv-doc's
 photos; skips with a message without them.
@@ -30,6 +31,7 @@ ms = importlib.util.module_from_spec(_spec)
 _loader.exec_module(ms)
 sys.path.insert(0, os.path.join(HERE, "..", "..", "bench"))
 import report  # noqa: E402  bench/report.py
+import real_camera_cube  # noqa: E402  bench/real_camera_cube.py
 
 DATA = os.environ.get("AMCR_DATA", os.path.join(HERE, "..", "..", "..", "shared", "data"))
 MPEG7 = os.path.join(DATA, "mpeg7")
@@ -55,6 +57,7 @@ class SeedIndex(unittest.TestCase):
         self.assertEqual([ms.SEED_INDEX[s] for s in ["memory-growth", "paper-hd", "clutter-only-hd", "copies",
                                                       "real-photos"]], [8, 9, 10, 11, 12])
         self.assertEqual([ms.SEED_INDEX[s] for s in ["within-class-1330", "within-class-85"]], [13, 14])
+        self.assertEqual(ms.SEED_INDEX["real-camera-cube"], 15)
         self.assertEqual(len(set(ms.SEED_INDEX.values())), len(ms.SEED_INDEX))
         self.assertEqual(set(ms.SEED_INDEX), set(ms.SUITES))
 
@@ -261,6 +264,33 @@ class RealPhotos(unittest.TestCase):
                     self.assertGreater(np.mean(grey[shape] < threshold), 0.9)
                 distances = np.linalg.norm(centres[:, None] - centres[None], axis=2) + 1e9 * np.eye(6)
                 self.assertGreater(distances.min(), 30.0)  # six different parts
+
+
+@unittest.skipUnless(os.path.isdir(os.path.join(real_camera_cube.VISP_DIR, "cube")),
+                     "visp-images-data is not installed (apt-get install visp-images-data): no cube")
+class RealCameraCube(unittest.TestCase):
+    def test_truth_like_real_camera_and_a_turned_report_scores(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            ms.render_real(tmp, "real-camera-cube", 0, 3, 1)
+            with open(os.path.join(tmp, "truth.json")) as f:
+                truth = json.load(f)
+            self.assertEqual(len(os.listdir(os.path.join(tmp, "frames"))), 3)
+        self.assertEqual(truth["targets"][0]["label"], "cube-face")
+        self.assertEqual(truth["source"], "visp-images-data cube")
+        self.assertEqual(len(truth["symmetries"]), 4)  # the four quarter turns
+        self.assertEqual(truth["known_frames"], 3)
+        frame = truth["frames"][0]["objects"][0]
+        self.assertEqual(len(frame["homography"]), 3)
+        # A report of the face turned by a quarter is at the right place: the symmetries count.
+        w, h = truth["prototype_sizes"]["cube-face"]
+        c = np.array([(w - 1) / 2.0, (h - 1) / 2.0])
+        turn = np.array([[0.0, -1.0], [1.0, 0.0]])
+        a = np.asarray(frame["prototype_to_image"])
+        turned = np.hstack([a[:, :2] @ turn, (a[:, :2] @ (c - turn @ c) + a[:, 2]).reshape(2, 1)])
+        rows = {0: {"objects": [{"label": "cube-face", "prototype_to_image": turned.tolist()}], "time_ms": 1.0}}
+        m = report.real_camera_sequence(truth, rows)
+        self.assertEqual(m["right_share"], 1.0)
+        self.assertLess(m["corner_error_median"], 1.0)
 
 
 def copy_at(label, x, y, size=(100, 50)):
