@@ -4,7 +4,9 @@
 // seeding prior pi itself: a prototype from the context prior, a position
 // uniform over its interior), the weighted particles must reproduce pi's
 // moments although the proposal q is far from it; with the index off every
-// weight is 1, as before the index.
+// weight is 1, as before the index; proposal_correction c weighs by (pi / q)^c,
+// so that with 0 (sensor resetting) a proposed particle is weighed as a
+// uniform one.
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -57,6 +59,7 @@ amcr::Params toyParams()
   p.min_support = 1;
   p.kld_error = 0.0;
   p.index_share = 0.5;
+  p.proposal_correction = 1.0;  // exact importance sampling: the weights are pi / q
   p.prototype_priors = {{"arrow", 3.0}, {"crescent", 1.0}};  // pi: 3/4 arrow, 1/4 crescent
   p.seed = 3;
   return p;
@@ -74,22 +77,30 @@ amcr::RadialScanner toyScene(const amcr::Params& p, cv::Mat& storage)
   return amcr::RadialScanner(storage, p.edge_threshold, p.max_ray_length);
 }
 
+/// The toy filter of `p`, seeded until its V-particle lands where all 8 rays
+/// meet an edge (else the index has nothing to propose and the toy tests nothing).
+std::unique_ptr<amcr::ParticleFilter> seededToy(const amcr::Params& p, const amcr::RadialScanner& scanner)
+{
+  static const auto memory = amcr_test::drawnMemory({ShapeId::kArrow, ShapeId::kCrescent});
+  auto filter = std::make_unique<amcr::ParticleFilter>(p, memory);
+  for (int attempt = 0; attempt < 20; ++attempt)
+  {
+    filter->seed(scanner);
+    if (filter->vParticles()[0].rays.valid_rays() == amcr::kFeatureRays)
+      break;
+  }
+  return filter;
+}
+
 TEST(MixtureProposal, WeightedNewParticlesFollowTheSeedingPrior)
 {
   const amcr::Params p = toyParams();
-  auto memory = amcr_test::drawnMemory({ShapeId::kArrow, ShapeId::kCrescent});
-  amcr::ParticleFilter filter(p, memory);
-  ASSERT_NE(filter.proposalIndex(), nullptr);
   cv::Mat storage;
   const amcr::RadialScanner scanner = toyScene(p, storage);
-  // Seeds until the V-particle lands where all 8 rays meet an edge (else
-  // the index has nothing to propose and the toy tests nothing).
-  for (int attempt = 0; attempt < 20; ++attempt)
-  {
-    filter.seed(scanner);
-    if (filter.vParticles()[0].rays.valid_rays() == amcr::kFeatureRays)
-      break;
-  }
+  const std::unique_ptr<amcr::ParticleFilter> toy = seededToy(p, scanner);
+  const amcr::ParticleFilter& filter = *toy;
+  const amcr::PrototypeMemory* memory = &filter.memory();
+  ASSERT_NE(filter.proposalIndex(), nullptr);
   const amcr::MParticleSet& m = filter.mParticles();
 
   // pi's moments: the prior over prototypes, the interior's centroid and spread.
@@ -122,6 +133,31 @@ TEST(MixtureProposal, WeightedNewParticlesFollowTheSeedingPrior)
   // spread is ~25-35 px, so the standard error of a mean is ~0.3-0.5 px).
   // [measured: 0.54 px at worst; the unweighted particles 27 px]
   EXPECT_LT(worst_weighted, 1.5);
+}
+
+TEST(MixtureProposal, TheCorrectionIsAnExponentOfTheImportanceWeight)
+{
+  // The same seed draws the same particles whatever the correction; only their weights differ.
+  amcr::Params p = toyParams();
+  cv::Mat storage;
+  const amcr::RadialScanner scanner = toyScene(p, storage);
+  const std::unique_ptr<amcr::ParticleFilter> exact = seededToy(p, scanner);
+  p.proposal_correction = 0.5;
+  const std::unique_ptr<amcr::ParticleFilter> half = seededToy(p, scanner);
+  p.proposal_correction = 0.0;
+  const std::unique_ptr<amcr::ParticleFilter> resetting = seededToy(p, scanner);
+  const amcr::MParticleSet &e = exact->mParticles(), &h = half->mParticles(), &r = resetting->mParticles();
+  ASSERT_EQ(e.size(), r.size());
+  int weighted = 0;
+  for (std::size_t i = 0; i < e.size(); ++i)
+  {
+    ASSERT_EQ(e.x[i], r.x[i]);
+    ASSERT_EQ(e.prototype[i], h.prototype[i]);
+    ASSERT_EQ(r.log_proposal[i], 0.f) << "sensor resetting weighs a proposed particle as a uniform one";
+    ASSERT_NEAR(h.log_proposal[i], 0.5f * e.log_proposal[i], 1e-4f);
+    weighted += e.log_proposal[i] < -1.0f ? 1 : 0;
+  }
+  EXPECT_GT(weighted, static_cast<int>(e.size() / 10)) << "the index proposed too little to test";
 }
 
 TEST(MixtureProposal, WithTheIndexOffEveryWeightIsOne)

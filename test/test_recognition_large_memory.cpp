@@ -180,7 +180,11 @@ TEST(KldSampling, TheCountFallsAsTheParticlesConvergeAndStaysInItsBounds)
     EXPECT_DOUBLE_EQ(result.mean_m_particles, filter.meanMParticles());
     if (k == 0)
     {
-      EXPECT_EQ(result.mean_m_particles, p.m_particles_per_v);  // the first update of a fresh V-particle
+      // The first update of fresh V-particles: their particles spread over so many bins that
+      // KLD-sampling keeps about the budget; one whose first scan the index matched closely may
+      // concentrate at once (its proposals weigh by their likelihood: proposal_correction 0).
+      EXPECT_GE(result.mean_m_particles, 0.95 * p.m_particles_per_v);
+      EXPECT_LE(result.mean_m_particles, p.m_particles_per_v);
     }
   }
   ASSERT_GT(converged_n, 100) << "too few converged V-particles to test";
@@ -188,7 +192,8 @@ TEST(KldSampling, TheCountFallsAsTheParticlesConvergeAndStaysInItsBounds)
   const double converged_mean = converged_sum / converged_n, spread_mean = spread_sum / spread_n;
   std::cout << "[ kld      ] mean M-particles: converged V " << converged_mean << ", others " << spread_mean
             << ", fewest " << fewest << std::endl;
-  // Measured, seeds 1-3: converged 243-295, others 943-959, fewest 105-144.
+  // Measured, seed 1: converged 383, others 914, fewest 169 (243-295, 943-959, 105-144 over
+  // seeds 1-3 with the importance-weighted proposals, proposal_correction 1).
   EXPECT_LT(converged_mean, 0.5 * spread_mean);
   EXPECT_LE(fewest, static_cast<std::size_t>(p.m_particles_per_v / 4));
 }

@@ -45,6 +45,9 @@ struct Params
 
   // Data-driven proposals (proposal_index.h).
   double index_share = 0.5;  ///< share of new M-particles drawn from the proposal index [0, 1]; 0 = none
+  /// Exponent of the importance weight pi / q of a new M-particle under the mixture proposal [0, 1]:
+  /// 1 = exact importance sampling, 0 = sensor resetting (weighed by its likelihood alone).
+  double proposal_correction = 0.0;
   int index_stride = 6;      ///< table px between the indexed points of a prototype [1, 64]
   int index_candidates = 64; ///< places a V-particle's query returns [1, 1000]
   /// Most entries the index holds [0, 1e9]; a memory that would need more

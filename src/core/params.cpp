@@ -44,6 +44,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(kld_error, "", 0, 1, "KLD-sampling's bound on the KL divergence between the particles and the posterior (Fox 2003); 0 = a fixed count"),
       AMCR_DOUBLE(kld_z, "", 0, 10, "KLD-sampling's upper standard normal quantile (2.33: 99%)"),
       AMCR_DOUBLE(index_share, "", 0, 1, "share of new M-particles drawn from the proposal index; 0 = none (paper)"),
+      AMCR_DOUBLE(proposal_correction, "", 0, 1, "exponent of the importance weight pi/q of a new M-particle under the mixture proposal; 1 = exact importance sampling, 0 = sensor resetting"),
       AMCR_INT(index_stride, "prototype px", 1, 64, "distance between the indexed points of a prototype"),
       AMCR_INT(index_candidates, "", 1, 1000, "places of the memory a V-particle's query returns"),
       AMCR_INT(index_max_entries, "", 0, 1e9, "most entries of the proposal index; a larger memory is indexed at a larger stride; 0 = no limit"),

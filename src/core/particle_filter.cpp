@@ -278,8 +278,10 @@ double ParticleFilter::seedingProbability(int p) const
 // Mixture proposal (Thrun, Fox, Burgard & Dellaert's Mixture-MCL; Lenser &
 // Veloso's sensor resetting): a share of the new M-particles where the index
 // finds table rays like the V-particle's. Its importance weight
-// (logProposalWeight) keeps the filter a correct SIR for the paper's uniform
-// seeding; with the index off nothing is drawn and the weight is 1.
+// (logProposalWeight) raised to proposal_correction: 1 keeps the filter a
+// correct SIR for the paper's uniform seeding, 0 lets a proposed particle
+// compete by its likelihood alone (sensor resetting); with the index off
+// nothing is drawn and the weight is 1.
 void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, const VParticle& v,
                            VWorkspace& work) const
 {
@@ -288,7 +290,10 @@ void ParticleFilter::seedM(MParticleSet& set, std::size_t index, int prototype, 
     seedAtCandidate(set, index, work.candidates[work.rng.index(work.candidates.size())], work.rng);
   else
     seedUniform(set, index, prototype, v, work.rng);
-  set.log_proposal[index] = share > 0.0 ? logProposalWeight(set, index, share, work.candidates) : 0.f;
+  set.log_proposal[index] = share > 0.0 && params_.proposal_correction > 0.0
+                                ? static_cast<float>(params_.proposal_correction) *
+                                      logProposalWeight(set, index, share, work.candidates)
+                                : 0.f;
 }
 
 namespace
