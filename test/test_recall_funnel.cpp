@@ -79,7 +79,9 @@ amcr_bench::FunnelSummary runFunnel(const amcr::Params& params, int* reports = n
     for (const amcr::RecognizedObject& o : result.objects)
       right = right || (o.label == "arrow" && amcr_test::cornerError(o.prototype_to_image, scene.truth) <= 6.0);
     if (right)
+    {
       EXPECT_TRUE(objects[0].reported) << "frame " << k;
+    }
     reported += objects[0].reported ? 1 : 0;
     recorder.add(k, objects);
   }
