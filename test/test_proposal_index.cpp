@@ -3,6 +3,7 @@
 // alike. Measured shares are in brackets beside each bound.
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <memory>
 #include <random>
 #include <string>
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "amcr/corrected_scan.h"
 #include "amcr/errors.h"
 #include "amcr/proposal_index.h"
 #include "amcr/radial_scan.h"
@@ -140,6 +142,68 @@ TEST_F(ProposalIndexTest, FindsDrawnShapesUnderSimilaritiesAndModerateAffines)
   ASSERT_GT(tried_affine, 300);
   EXPECT_GE(found_similar, 0.8 * tried_similar) << found_similar << " of " << tried_similar;  // [0.90]
   EXPECT_GE(found_affine, 0.8 * tried_affine) << found_affine << " of " << tried_affine;     // [0.91]
+}
+
+// Oblique views (anisotropy 2-3): the V-particle's own rays miss the true
+// place mostly, the same place read under the view's shape
+// (unsquashedFeatureRays) finds it as a frontal view is found.
+TEST_F(ProposalIndexTest, FindsObliqueViewsReadUnderTheirViewShape)
+{
+  std::mt19937_64 gen(12);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const amcr::Params params;
+  int tried = 0, found_own = 0, found_unsquashed = 0;
+  for (ShapeId id : amcr_test::allShapes())
+  {
+    const int p = memory_->find(amcr_test::shapeName(id));
+    const amcr::Prototype& prototype = (*memory_)[p];
+    for (int view = 0; view < 4; ++view)
+    {
+      const double anisotropy = 2.0 + unit(gen);
+      const double scale = 1.0 + 0.5 * unit(gen);
+      const amcr::Affine to_image =
+          amcr_test::makeAffine(amcr_test::prototypeCentre(), cv::Point2d(250, 250), 2.0 * M_PI * unit(gen),
+                                scale * std::sqrt(anisotropy), scale / std::sqrt(anisotropy), 0.0);
+      cv::Mat image(500, 500, CV_8UC1, cv::Scalar(0));
+      amcr_test::fillPolygon(image, amcr_test::transformPoints(to_image, amcr_test::shapePolygon(id)), 255);
+      const amcr::RadialScanner scanner(amcr::prepareScanImage(image, params.blur_sigma), params.edge_threshold,
+                                        params.max_ray_length);
+      // The image -> table map and its view shape.
+      const amcr::Affine table_to_image = amcr::composeAffine(prototype.tableToOriginal(), to_image);
+      amcr::Affine image_to_table;
+      ASSERT_TRUE(amcr::invertAffine(table_to_image, image_to_table));
+      const float linear[6] = {static_cast<float>(image_to_table(0, 0)), static_cast<float>(image_to_table(0, 1)), 0.f,
+                               static_cast<float>(image_to_table(1, 0)), static_cast<float>(image_to_table(1, 1)), 0.f};
+      float shape[3];
+      ASSERT_TRUE(amcr::viewShape(linear, shape));
+      for (int trial = 0; trial < 40; ++trial)
+      {
+        const cv::Point table = prototype.interior()[gen() % prototype.interior().size()];
+        const cv::Point2d at = amcr::applyAffine(table_to_image, cv::Point2d(table));
+        const double heading = 2.0 * M_PI * unit(gen);
+        amcr::RayHit rays[amcr::kFeatureRays];
+        amcr::scanFeatureRays(scanner, static_cast<float>(at.x), static_cast<float>(at.y),
+                              static_cast<float>(heading), rays);
+        const amcr::RaySignature own = amcr::raySignature(rays);
+        const amcr::RaySignature unsquashed = amcr::unsquashedFeatureRays(
+            scanner, static_cast<float>(at.x), static_cast<float>(at.y), static_cast<float>(heading), shape);
+        if (own.valid_rays() < amcr::kFeatureRays || unsquashed.valid_rays() < amcr::kFeatureRays)
+          continue;
+        // The true heading: the table direction of the V-particle's heading.
+        const double tx = linear[0] * std::cos(heading) + linear[1] * std::sin(heading);
+        const double ty = linear[3] * std::cos(heading) + linear[4] * std::sin(heading);
+        const int bin = amcr::angleToBin(std::atan2(ty, tx));
+        ++tried;
+        found_own += hits(index_->query(own, kCandidates), p, table, bin, 2.0 * kStride, 2) ? 1 : 0;
+        found_unsquashed += hits(index_->query(unsquashed, kCandidates), p, table, bin, 2.0 * kStride, 2) ? 1 : 0;
+      }
+    }
+  }
+  ASSERT_GT(tried, 300);
+  EXPECT_LT(found_own, 0.5 * tried) << found_own << " of " << tried;                // [0.24]
+  EXPECT_GE(found_unsquashed, 0.8 * tried) << found_unsquashed << " of " << tried;  // [0.87]
+  std::cout << "[ oblique  ] own rays " << found_own << " of " << tried << ", unsquashed " << found_unsquashed
+            << std::endl;
 }
 
 // The k-d tree search against the exhaustive reference on the same

@@ -205,8 +205,10 @@ private:
   /// log(seeding density / mixture density) at M-particle `index` of `set`.
   float logProposalWeight(const MParticleSet& set, std::size_t index, double share,
                           const std::vector<ProposalCandidate>& candidates) const;
-  /// The places of the memory the V-particle's rays look like (into work.candidates).
-  void findCandidates(const VParticle& v, VWorkspace& work) const;
+  /// The places of the memory the V-particle's rays look like (into
+  /// work.candidates): its own rays, and with oblique view shapes on, its
+  /// rays read under one drawn view shape (particle_filter.cpp).
+  void findCandidates(const VParticle& v, const RadialScanner& scanner, VWorkspace& work) const;
   /// KLD-sampling (Fox 2003): how many M-particles the next generation of
   /// a V-particle needs, given `picks` drawn from the current one.
   int kldCount(const std::vector<int>& picks, std::size_t begin, std::vector<std::uint64_t>& bins) const;
@@ -219,6 +221,9 @@ private:
   /// ray_correspondence affine: gives M-particle `index` a view shape,
   /// frontal or drawn (corrected_scan.h); true when it is not frontal.
   bool drawShape(MParticleSet& set, std::size_t index, Rng& rng) const;
+  /// An oblique view shape: anisotropy log-uniform in [1, max_anisotropy]
+  /// along a uniform axis.
+  void drawObliqueShape(Rng& rng, float shape[3]) const;
   /// Scans the V-particle's rays (refreshing v.rays) and updates its
   /// M-particles by eqs. 5-6 (particle_filter_measurement.cpp).
   void measure(int v_index, const RadialScanner& scanner);

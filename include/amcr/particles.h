@@ -27,6 +27,15 @@ void scanFeatureRays(const RadialScanner& scanner, float x, float y, float theta
 /// least 1e-3 px), 0 for a ray that met no edge.
 RaySignature raySignature(const RayHit hits[kFeatureRays]);
 
+/// The 8 feature rays the view from (x, y) with heading theta would show
+/// seen frontally, if the image is a view of shape `shape` (xx, xy, yy; the
+/// symmetric part of an image -> table map, det 1; corrected_scan.h): the
+/// image is scanned along P^-1 u_k, where u_0 is the heading mapped by P and
+/// u_k is u_0 turned by k * 45 deg, and each distance is mapped back by P.
+/// Ray 0 is the heading itself, so a place the index finds for them gives
+/// the M-particle's heading directly (the table direction of u_0).
+RaySignature unsquashedFeatureRays(const RadialScanner& scanner, float x, float y, float theta, const float shape[3]);
+
 /// A V-particle: a pose in the input image plus its evidence record.
 struct VParticle
 {

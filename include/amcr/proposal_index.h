@@ -51,6 +51,9 @@ struct ProposalCandidate
   int bin = 0;           ///< heading bin (ray_directions.h)
   float log_scale = 0;   ///< log(table px per input px) of the rays' mean
   float distance = 0;    ///< descriptor distance (L2, log units)
+  /// The view shape the query assumed (xx, xy, yy; unsquashedFeatureRays): frontal for the
+  /// V-particle's own rays.
+  float shape[3] = {1.f, 0.f, 1.f};
 };
 
 class ProposalIndex

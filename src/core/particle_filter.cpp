@@ -148,7 +148,7 @@ void ParticleFilter::seedVAndM(VParticle& v, MParticleSet& set, std::size_t begi
                                const RadialScanner& scanner, VWorkspace& work)
 {
   seedV(v, scanner, work.rng);
-  findCandidates(v, work);
+  findCandidates(v, scanner, work);
   seedMRange(set, begin, end, v, work);
 }
 
@@ -316,7 +316,7 @@ void ParticleFilter::seedAtCandidate(MParticleSet& set, std::size_t index, const
   set.theta[index] = static_cast<float>(wrapAngle(binToAngle(c.bin) + rng.uniform(-0.5, 0.5) * kBinAngle));
   set.prototype[index] = c.prototype;
   for (int k = 0; k < 3; ++k)
-    set.shape[k][index] = kFrontalShape[k];  // the descriptor matches similarities (proposal_index.h)
+    set.shape[k][index] = c.shape[k];  // the view the query assumed: the descriptor matches similarities of it
   clearMeasurement(set, index);
 }
 
@@ -353,11 +353,37 @@ float ParticleFilter::logProposalWeight(const MParticleSet& set, std::size_t ind
   return static_cast<float>(std::log(uniform) - std::log(mixture));
 }
 
-void ParticleFilter::findCandidates(const VParticle& v, VWorkspace& work) const
+// The index holds frontal views only (proposal_index.h): a V-particle on an
+// oblique view finds its true place only when its rays are read as the
+// frontal view would show them. So besides its own rays it asks once more
+// per iteration under a view shape drawn as an oblique M-particle's is, and
+// the candidates are shared as the view shapes of new M-particles are:
+// oblique_share of them from that query (a place found that way seeds its
+// M-particle with that shape), the rest from its own rays. Not merged by
+// descriptor distance: a squashed reading fits wrong places more closely too
+// (one more degree of freedom), and crowded out the frontal ones.
+void ParticleFilter::findCandidates(const VParticle& v, const RadialScanner& scanner, VWorkspace& work) const
 {
   work.candidates.clear();
-  if (index_)
-    work.candidates = index_->query(v.rays, params_.index_candidates);
+  if (!index_)
+    return;
+  const bool oblique_views = params_.ray_correspondence == RayCorrespondence::kAffine &&
+                             params_.max_anisotropy > 1.0 && params_.oblique_share > 0.0;
+  const int oblique_count =
+      oblique_views ? std::min(params_.index_candidates - 1,
+                               static_cast<int>(std::lround(params_.oblique_share * params_.index_candidates)))
+                    : 0;
+  work.candidates = index_->query(v.rays, params_.index_candidates - oblique_count);
+  if (oblique_count == 0)
+    return;
+  float shape[3];
+  drawObliqueShape(work.rng, shape);
+  for (ProposalCandidate c :
+       index_->query(unsquashedFeatureRays(scanner, v.x, v.y, v.theta, shape), oblique_count))
+  {
+    std::copy(shape, shape + 3, c.shape);
+    work.candidates.push_back(c);
+  }
 }
 
 // A uniform position inside the prototype; the heading from the proposal
@@ -406,16 +432,19 @@ bool ParticleFilter::drawShape(MParticleSet& set, std::size_t index, Rng& rng) c
   const bool oblique =
       params_.max_anisotropy > 1.0 && params_.oblique_share > 0.0 && rng.uniform() < params_.oblique_share;
   if (oblique)
-  {
-    // The axis first, then the anisotropy, in two statements: the order of a
-    // call's arguments is unspecified (this is the order GCC took).
-    const float axis = static_cast<float>(rng.uniform(0.0, M_PI));
-    const float anisotropy = static_cast<float>(std::exp(rng.uniform(0.0, std::log(params_.max_anisotropy))));
-    obliqueShape(anisotropy, axis, shape);
-  }
+    drawObliqueShape(rng, shape);
   for (int k = 0; k < 3; ++k)
     set.shape[k][index] = shape[k];
   return oblique;
+}
+
+void ParticleFilter::drawObliqueShape(Rng& rng, float shape[3]) const
+{
+  // The axis first, then the anisotropy, in two statements: the order of a
+  // call's arguments is unspecified (this is the order GCC took).
+  const float axis = static_cast<float>(rng.uniform(0.0, M_PI));
+  const float anisotropy = static_cast<float>(std::exp(rng.uniform(0.0, std::log(params_.max_anisotropy))));
+  obliqueShape(anisotropy, axis, shape);
 }
 
 // ---------------------------------------------------------------------------

@@ -23,7 +23,7 @@ void ParticleFilter::measure(int v_index, const RadialScanner& scanner)
   }
   v.rays = raySignature(hits);
   VWorkspace& work = work_[v_index];
-  findCandidates(v, work);  // for the M-particles this iteration seeds
+  findCandidates(v, scanner, work);  // for the M-particles this iteration seeds
   for (int t = 1; t < kTriangleRays; ++t)
   {
     const RayHit hit = scanner.scanAngle(v.x, v.y, v.theta + t * kTriangleBinStep * kBinAngle);

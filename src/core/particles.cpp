@@ -1,6 +1,7 @@
 #include "amcr/particles.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace amcr
 {
@@ -15,6 +16,24 @@ RaySignature raySignature(const RayHit hits[kFeatureRays])
   RaySignature rays;
   for (int k = 0; k < kFeatureRays; ++k)
     rays.distance[k] = hits[k].valid ? std::max(hits[k].distance, 1e-3f) : 0.f;
+  return rays;
+}
+
+RaySignature unsquashedFeatureRays(const RadialScanner& scanner, float x, float y, float theta, const float shape[3])
+{
+  const float a = shape[0], b = shape[1], c = shape[2];  // P; its inverse is (c, -b; -b, a) (det 1)
+  const float hx = std::cos(theta), hy = std::sin(theta);
+  const float u0 = std::atan2(b * hx + c * hy, a * hx + b * hy);
+  RaySignature rays;
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    const float angle = u0 + static_cast<float>(k * kFeatureBinStep * kBinAngle);
+    const float ux = std::cos(angle), uy = std::sin(angle);
+    const float dx = c * ux - b * uy, dy = -b * ux + a * uy;  // P^-1 u_k
+    const float length = std::hypot(dx, dy);
+    const RayHit hit = scanner.scanAngle(x, y, std::atan2(dy, dx));
+    rays.distance[k] = hit.valid ? std::max(hit.distance / length, 1e-3f) : 0.f;
+  }
   return rays;
 }
 
