@@ -18,7 +18,7 @@ struct PerspectiveRule
   double min_affine_residual = 0.4;   ///< px: an affine this close to its edges is kept untried
   double residual_ratio = 0.7;     ///< the homography's residual must be at most this share of the affine's
   double min_residual_gain = 0.25; ///< px: and at least this much lower
-  double max_residual = 0.6;       ///< px: and at most this: the homography must explain the outline
+  double max_residual = 1.2;       ///< px: and at most this: the homography must explain the outline
   double max_depth_ratio = 2.0;    ///< bound of the perspective terms: far / near depth over the outline's box
   double max_corner_shift = 0.2;   ///< the box's corners move at most this share of its mapped diagonal from the affine's
   double max_scale = 8.0;          ///< local scale bound (params.max_affine_scale)
