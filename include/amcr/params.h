@@ -89,7 +89,7 @@ struct Params
   RayCorrespondence ray_correspondence = RayCorrespondence::kAffine;
   int affine_refits = 0;          ///< re-estimates of A from affine-corrected triangle rays [0, 5]
   double max_anisotropy = 3.0;    ///< largest anisotropy of the view shapes new M-particles get [1, 10]; 1 = frontal
-  double oblique_share = 0.5;     ///< share of new M-particles given an oblique view shape [0, 1]
+  double oblique_share = 0.5;     ///< share of new M-particles given an oblique view shape, and of index candidates read under one [0, 1]
   double motion_noise_shape = 0.05;  ///< M-particle view-shape noise per iteration [0, 1]
 
   // Motion model (paper 4.2) and exploration policy (paper 4.3).
