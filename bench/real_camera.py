@@ -89,39 +89,54 @@ def prototype_shape(geometry=MIRE):
     return int(round(w)) + 2 * PROTOTYPE_MARGIN, int(round(h)) + 2 * PROTOTYPE_MARGIN
 
 
-def square_to_prototype(geometry=MIRE):
-    """3x3 map from the normalised rectangle ([0, 1]^2) to prototype pixels (pixel-centre convention:
-    the rectangle covers the pixels MARGIN .. size-1-MARGIN, its edges half a pixel outside them)."""
-    w, h = (v - 2 * PROTOTYPE_MARGIN for v in prototype_shape(geometry))
+def unit_square_to_prototype(shape):
+    """3x3 map from the normalised target ([0, 1]^2) to the pixels of a prototype image of `shape`
+    (width, height) with PROTOTYPE_MARGIN around the target (pixel-centre convention: the target
+    covers the pixels MARGIN .. size-1-MARGIN, its edges half a pixel outside them)."""
+    w, h = (v - 2 * PROTOTYPE_MARGIN for v in shape)
     return np.array([[w, 0, PROTOTYPE_MARGIN - 0.5], [0, h, PROTOTYPE_MARGIN - 0.5], [0, 0, 1.0]])
+
+
+def unit_square_corners(square_to_prototype_map):
+    """The target's corners in prototype pixels, clockwise from the top-left."""
+    unit = np.array([[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], dtype=np.float64)
+    return (unit @ square_to_prototype_map.T)[:, :2]
+
+
+def square_to_prototype(geometry=MIRE):
+    """The rectangle's unit_square_to_prototype."""
+    return unit_square_to_prototype(prototype_shape(geometry))
 
 
 def prototype_corners(geometry=MIRE):
     """The rectangle's corners in prototype pixels, clockwise from the top-left."""
-    unit = np.array([[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], dtype=np.float64)
-    return (unit @ square_to_prototype(geometry).T)[:, :2]
+    return unit_square_corners(square_to_prototype(geometry))
+
+
+def draw_holed_target(shape, holes):
+    """A prototype image of `shape` (width, height): the target white on black with PROTOTYPE_MARGIN
+    around it, and round holes in it, each (centre in the normalised target, radius as a share of
+    its height). Drawn 8x larger and reduced (anti-aliased edges)."""
+    up = 8
+    width, height = shape
+    big = np.zeros((height * up, width * up), np.uint8)
+    m = PROTOTYPE_MARGIN * up
+    w, h = (width - 2 * PROTOTYPE_MARGIN) * up, (height - 2 * PROTOTYPE_MARGIN) * up
+    big[m:m + h, m:m + w] = 255
+    for center, radius in holes:
+        cx, cy = m - up / 2 + center[0] * w, m - up / 2 + center[1] * h
+        cv2.circle(big, (int(round(cx * 16)), int(round(cy * 16))), int(round(radius * h * 16)), 0, -1,
+                   cv2.LINE_8, 4)
+    return cv2.resize(big, (width, height), interpolation=cv2.INTER_AREA)
 
 
 def draw_prototype(geometry=MIRE):
     """The memory image of the target, drawn from its measured geometry: white shape on black (the
     memory's convention), i.e. the black rectangle printed on the target is the white shape here and
-    its white disc and dots are holes in it. Drawn 8x larger and reduced (anti-aliased edges)."""
-    up = 8
-    width, height = prototype_shape(geometry)
-    big = np.zeros((height * up, width * up), np.uint8)
-    m = PROTOTYPE_MARGIN * up
-    w, h = (width - 2 * PROTOTYPE_MARGIN) * up, (height - 2 * PROTOTYPE_MARGIN) * up
-    big[m:m + h, m:m + w] = 255
-
-    def disc(center, radius):
-        cx, cy = m - up / 2 + center[0] * w, m - up / 2 + center[1] * h
-        cv2.circle(big, (int(round(cx * 16)), int(round(cy * 16))), int(round(radius * h * 16)), 0, -1,
-                   cv2.LINE_8, 4)
-
-    disc(geometry["disc_center"], geometry["disc_radius"])
-    for dot in geometry["dots"]:
-        disc(dot, geometry["dot_radius"])
-    return cv2.resize(big, (width, height), interpolation=cv2.INTER_AREA)
+    its white disc and dots are holes in it."""
+    holes = [(geometry["disc_center"], geometry["disc_radius"])]
+    holes += [(dot, geometry["dot_radius"]) for dot in geometry["dots"]]
+    return draw_holed_target(prototype_shape(geometry), holes)
 
 
 def apply(h, points):

@@ -86,7 +86,7 @@ CUBE = {
 }
 
 PROTOTYPE_SIZE = 256
-PROTOTYPE_MARGIN = 8  # px of background around the face in the prototype image
+PROTOTYPE_MARGIN = real_camera.PROTOTYPE_MARGIN  # px of background around the face in the prototype image
 
 # The corner permutations a recognizer cannot tell apart: the four quarter turns. The face is square
 # and its ring of dots 4-fold symmetric but for the ring's shift towards one corner (the margins
@@ -124,33 +124,22 @@ def prototype_shape(geometry=CUBE):
 
 
 def square_to_prototype(geometry=CUBE):
-    """3x3 map from the normalised face ([0, 1]^2) to prototype pixels (pixel-centre convention: the
-    face covers the pixels MARGIN .. size-1-MARGIN, its edges half a pixel outside them)."""
-    w, h = (v - 2 * PROTOTYPE_MARGIN for v in prototype_shape(geometry))
-    return np.array([[w, 0, PROTOTYPE_MARGIN - 0.5], [0, h, PROTOTYPE_MARGIN - 0.5], [0, 0, 1.0]])
+    """3x3 map from the normalised face ([0, 1]^2) to prototype pixels (real_camera's, with the
+    same margin)."""
+    return real_camera.unit_square_to_prototype(prototype_shape(geometry))
 
 
 def prototype_corners(geometry=CUBE):
     """The face's corners in prototype pixels, clockwise from the top-left."""
-    unit = np.array([[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], dtype=np.float64)
-    return (unit @ square_to_prototype(geometry).T)[:, :2]
+    return real_camera.unit_square_corners(square_to_prototype(geometry))
 
 
 def draw_prototype(geometry=CUBE):
     """The memory image of the face, drawn from its measured geometry with the mire's convention
     (real_camera.draw_prototype): white shape on black, i.e. the black face is the white shape and
-    its white dots are holes in it. Drawn 8x larger and reduced (anti-aliased edges)."""
-    up = 8
-    width, height = prototype_shape(geometry)
-    big = np.zeros((height * up, width * up), np.uint8)
-    m = PROTOTYPE_MARGIN * up
-    w, h = (width - 2 * PROTOTYPE_MARGIN) * up, (height - 2 * PROTOTYPE_MARGIN) * up
-    big[m:m + h, m:m + w] = 255
-    radius = geometry["dot_radius"] / face_size(geometry)[1] * h
-    for x, y in face_dots(geometry):
-        cx, cy = m - up / 2 + x * w, m - up / 2 + y * h
-        cv2.circle(big, (int(round(cx * 16)), int(round(cy * 16))), int(round(radius * 16)), 0, -1, cv2.LINE_8, 4)
-    return cv2.resize(big, (width, height), interpolation=cv2.INTER_AREA)
+    its white dots are holes in it."""
+    radius = geometry["dot_radius"] / face_size(geometry)[1]  # a share of the face's height
+    return real_camera.draw_holed_target(prototype_shape(geometry), [(dot, radius) for dot in face_dots(geometry)])
 
 
 apply = real_camera.apply

@@ -14,22 +14,14 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "..", "bench"))
 import real_camera_cube as rcc  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+import test_real_camera_truth as mire_test  # noqa: E402  (its drawn view of a printed target)
+
 
 def printed_view(h_proto, size=(384, 288), background=170, seed=3):
-    """The face as on the cube (black square, white dots) on a light ground, under h_proto."""
-    proto = rcc.draw_prototype().astype(np.float32) / 255.0  # 1 = the black face
-    ink = cv2.warpPerspective(proto, h_proto, size, flags=cv2.INTER_LINEAR)
-    inside = cv2.warpPerspective(np.ones_like(proto), h_proto, size, flags=cv2.INTER_NEAREST)
-    w, h = rcc.prototype_shape()
-    m = rcc.PROTOTYPE_MARGIN
-    dots = np.zeros_like(proto)
-    dots[m:h - m, m:w - m] = 1.0 - proto[m:h - m, m:w - m]
-    white = cv2.warpPerspective(dots, h_proto, size, flags=cv2.INTER_LINEAR)
-    grey = np.full(size[::-1], float(background), np.float32)
-    grey = grey * (1 - ink) + 30.0 * ink
-    grey = grey * (1 - white * inside) + 235.0 * white * inside
-    grey = cv2.GaussianBlur(grey, (0, 0), 0.6)  # a camera's blur: the dots are only 6-10 px across
-    return np.clip(grey + np.random.default_rng(seed).normal(0, 2, grey.shape), 0, 255).astype(np.uint8)
+    """The face as on the cube (black square, white dots) on a light ground, under h_proto, with a
+    camera's blur (the dots are only 6-10 px across)."""
+    return mire_test.printed_view(h_proto, size, background, module=rcc, ink_grey=30.0, blur=0.6, seed=seed)
 
 
 class DrawnFace(unittest.TestCase):

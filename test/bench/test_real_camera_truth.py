@@ -15,20 +15,24 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), "..
 import real_camera as rc  # noqa: E402
 
 
-def printed_view(h_proto, size=(384, 288), background=170):
-    """The target as printed (black rectangle, white disc and dots) on a light box, under h_proto."""
-    proto = rc.draw_prototype().astype(np.float32) / 255.0  # 1 = the black print
+def printed_view(h_proto, size=(384, 288), background=170, module=rc, ink_grey=25.0, blur=0.0, seed=3):
+    """A target drawn like `module`'s prototype (mire: a black rectangle with a white disc and dots;
+    real_camera_cube: a black face with white dots) on a light box, under h_proto: the shape in
+    `ink_grey`, its holes white; a camera's blur of `blur` px, noise of 2 grey levels."""
+    proto = module.draw_prototype().astype(np.float32) / 255.0  # 1 = the black print
     ink = cv2.warpPerspective(proto, h_proto, size, flags=cv2.INTER_LINEAR)
     inside = cv2.warpPerspective(np.ones_like(proto), h_proto, size, flags=cv2.INTER_NEAREST)
-    w, h = rc.prototype_shape()
-    m = rc.PROTOTYPE_MARGIN
-    disc_and_dots = np.zeros_like(proto)
-    disc_and_dots[m:h - m, m:w - m] = 1.0 - proto[m:h - m, m:w - m]
-    white = cv2.warpPerspective(disc_and_dots, h_proto, size, flags=cv2.INTER_LINEAR)
+    w, h = module.prototype_shape()
+    m = module.PROTOTYPE_MARGIN
+    holes = np.zeros_like(proto)
+    holes[m:h - m, m:w - m] = 1.0 - proto[m:h - m, m:w - m]
+    white = cv2.warpPerspective(holes, h_proto, size, flags=cv2.INTER_LINEAR)
     grey = np.full(size[::-1], float(background), np.float32)
-    grey = grey * (1 - ink) + 25.0 * ink
+    grey = grey * (1 - ink) + ink_grey * ink
     grey = grey * (1 - white * inside) + 235.0 * white * inside
-    return np.clip(grey + np.random.default_rng(3).normal(0, 2, grey.shape), 0, 255).astype(np.uint8)
+    if blur > 0:
+        grey = cv2.GaussianBlur(grey, (0, 0), blur)
+    return np.clip(grey + np.random.default_rng(seed).normal(0, 2, grey.shape), 0, 255).astype(np.uint8)
 
 
 class DrawnTarget(unittest.TestCase):
