@@ -118,6 +118,51 @@ INSTANTIATE_TEST_SUITE_P(
       return amcr_test::shapeName(info.param.shape) + "_" + std::to_string(info.param.clutter_seed);
     });
 
+// Recall, not a lottery: each scene with recognizer seeds 1-5 must be right
+// within kMaxIterations, and most of them within kQuickIterations (the aim
+// is all of them; measured: 10 of 15, the others at iterations 16-22).
+constexpr int kQuickIterations = 15;
+constexpr int kMinQuick = 9;  // of 15
+
+TEST(LargeMemoryRecall, EverySeedFindsEveryTarget)
+{
+  const std::vector<Target> targets = {
+      {ShapeId::kArrow, {330, 250}, 35 * M_PI / 180, 0.85, 0.75, 0.25, 101},
+      {ShapeId::kCrescent, {300, 230}, -50 * M_PI / 180, 0.9, 1.0, -0.2, 302},
+      {ShapeId::kFlag, {320, 240}, 100 * M_PI / 180, 0.9, 0.85, 0.1, 303}};
+  std::string summary;
+  int misses = 0, quick = 0;
+  for (const Target& t : targets)
+  {
+    const amcr::Affine truth =
+        amcr_test::makeAffine(amcr_test::prototypeCentre(), t.centre, t.rotation, t.scale_x, t.scale_y, t.shear);
+    amcr_test::Scene scene;
+    scene.objects.push_back({t.shape, truth});
+    scene.clutter = clutter(t.clutter_seed);
+    const std::vector<cv::Mat> frames = amcr_test::renderSequence(scene, kMaxIterations);
+    const std::string label = amcr_test::shapeName(t.shape);
+    summary += "\n  " + label + ":";
+    for (std::uint64_t seed = 1; seed <= 5; ++seed)
+    {
+      amcr::Params p = params();
+      p.seed = seed;
+      amcr::Recognizer recognizer(p, memory());
+      int first_correct = -1;
+      for (int k = 0; k < kMaxIterations && first_correct < 0; ++k)
+        for (const amcr::RecognizedObject& o : recognizer.step(frames[k]).objects)
+          if (o.label == label && amcr_test::cornerError(o.prototype_to_image, truth) <= kCornerTolerance)
+            first_correct = k + 1;
+      summary += " " + (first_correct > 0 ? std::to_string(first_correct) : std::string("-"));
+      misses += first_correct > 0 ? 0 : 1;
+      quick += first_correct > 0 && first_correct <= kQuickIterations ? 1 : 0;
+    }
+  }
+  std::cout << "[ recall   ] first correct iteration, recognizer seeds 1-5:" << summary << std::endl;
+  EXPECT_EQ(misses, 0) << "not right within " << kMaxIterations << " iterations:" << summary;
+  EXPECT_GE(quick, kMinQuick) << "right within " << kQuickIterations << " iterations in " << quick << " of 15:"
+                              << summary;
+}
+
 TEST(LargeMemoryClutter, NothingIsReported)
 {
   amcr_test::Scene scene;
