@@ -43,13 +43,30 @@ struct TruePlace
   }
 };
 
+/// Whether prototype `p` is the very shape shown: of the object's label and image size, and,
+/// where the memory holds several instances of the label (a label directory), the instance drawn
+/// from the truth's source image (the shown instance may be held out of the memory).
+bool isShownShape(const amcr::PrototypeMemory& memory, std::size_t p, const TruthObject& object)
+{
+  if (memory[p].label() != object.label || memory[p].originalSize() != object.prototype_size)
+    return false;
+  int instances = 0;
+  for (std::size_t q = 0; q < memory.size(); ++q)
+    instances += memory[q].label() == object.label ? 1 : 0;
+  if (instances == 1)
+    return true;
+  const std::string& instance = memory[p].instance();
+  const std::string file = instance.substr(instance.find_last_of('/') + 1);
+  return !object.source.empty() && file == object.source;
+}
+
 /// Every (prototype, truth map) pair under which the object's true place is judged.
 std::vector<TruePlace> truePlaces(const amcr::PrototypeMemory& memory, const TruthObject& object)
 {
   std::vector<TruePlace> places;
   for (std::size_t p = 0; p < memory.size(); ++p)
   {
-    if (memory[p].label() != object.label || memory[p].originalSize() != object.prototype_size)
+    if (!isShownShape(memory, p, object))
       continue;
     const cv::Matx23d& o2t = memory[p].originalToTable();
     const cv::Matx33d original_to_table(o2t(0, 0), o2t(0, 1), o2t(0, 2), o2t(1, 0), o2t(1, 1), o2t(1, 2), 0, 0, 1);

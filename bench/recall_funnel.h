@@ -51,8 +51,9 @@ struct FunnelTolerance
 struct ObjectFunnel
 {
   std::string label;
-  /// False when the memory holds no prototype of the object's label and size (an instance held
-  /// out of it): the place stages cannot be judged, only the label's report.
+  /// False when the memory does not hold the shape shown (no prototype of its label and size, or,
+  /// among several instances of the label, none drawn from the truth's source image: an instance
+  /// held out of it): the place stages cannot be judged, only the label's report.
   bool in_memory = false;
   int v_on = 0;         ///< V-particles on the object
   int v_indexable = 0;  ///< of those, with all 8 rays on an edge (what the index can be asked with)

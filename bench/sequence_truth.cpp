@@ -1,6 +1,7 @@
 #include "sequence_truth.h"
 
 #include <fstream>
+#include <map>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -65,6 +66,9 @@ std::vector<TruthFrame> readSequenceTruth(const std::string& path)
   try
   {
     const json truth = json::parse(in);
+    std::map<std::string, std::string> sources;  // label -> the image the shown shape was drawn from
+    for (const json& t : truth.value("targets", json::array()))
+      sources[t.at("label").get<std::string>()] = t.value("source", std::string());
     std::vector<TruthFrame> frames;
     for (const json& f : truth.at("frames"))
     {
@@ -74,6 +78,8 @@ std::vector<TruthFrame> readSequenceTruth(const std::string& path)
       {
         TruthObject object;
         object.label = o.at("label").get<std::string>();
+        const auto source = sources.find(object.label);
+        object.source = source == sources.end() ? std::string() : source->second;
         const json& size = truth.at("prototype_sizes").at(object.label);
         object.prototype_size = cv::Size(size.at(0).get<int>(), size.at(1).get<int>());
         if (frame.known)

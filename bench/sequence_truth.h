@@ -13,6 +13,9 @@ namespace amcr_bench
 struct TruthObject
 {
   std::string label;
+  /// The image file the shown shape was drawn from ("dog-10.png"; the truth's targets), "" when
+  /// the truth does not say.
+  std::string source;
   /// The size of the prototype image the truth maps from (px): the shown shape's own image, which
   /// the memory holds only when it holds a prototype of this label and size.
   cv::Size prototype_size;

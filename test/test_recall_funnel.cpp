@@ -145,11 +145,31 @@ TEST(RecallFunnel, AnUnreachableSupportStopsAtTheReport)
   EXPECT_EQ(stage(s.first_missing), "reported");
 }
 
+TEST(RecallFunnel, AnInstanceHeldOutOfTheMemoryIsJudgedByItsLabelOnly)
+{
+  // Two instances of "arrow" of the same image size: only the one drawn from the truth's source
+  // image is the shape shown.
+  auto instances = std::make_shared<amcr::PrototypeMemory>();
+  const amcr::Params params = defaults(1);
+  instances->add("arrow", amcr_test::drawPrototype(ShapeId::kArrow), params, "arrow/arrow-1.png");
+  instances->add("arrow", amcr_test::drawPrototype(ShapeId::kCrescent), params, "arrow/arrow-2.png");
+  amcr::Recognizer recognizer(params, instances);
+  const amcr::RecognitionResult result = recognizer.step(arrowScene().frames[0]);
+  amcr_bench::TruthFrame truth = arrowScene().truthFrame();
+  truth.objects[0].source = "arrow-1.png";
+  EXPECT_TRUE(amcr_bench::measureFunnel(recognizer, result, truth).at(0).in_memory);
+  truth.objects[0].source = "arrow-9.png";
+  const amcr_bench::ObjectFunnel held_out = amcr_bench::measureFunnel(recognizer, result, truth).at(0);
+  EXPECT_FALSE(held_out.in_memory);
+  EXPECT_EQ(held_out.v_on, 0);
+  EXPECT_EQ(held_out.best_rank, -1);
+}
+
 TEST(SequenceTruth, ReadsMapsAndSymmetries)
 {
   amcr_test::TempDir dir;
   const std::string path = dir.path() + "/truth.json";
-  std::ofstream(path) << R"({"prototype_sizes": {"mire": [256, 203]},
+  std::ofstream(path) << R"({"prototype_sizes": {"mire": [256, 203]}, "targets": [{"label": "mire", "source": "drawn"}],
     "score_points": [[7.5, 7.5], [247.5, 7.5], [247.5, 194.5], [7.5, 194.5]], "symmetries": [[0, 1, 2, 3], [2, 3, 0, 1]],
     "frames": [{"frame": 0, "unknown": true, "objects": [{"label": "mire"}]},
                {"frame": 1, "objects": [{"label": "mire", "homography": [[1, 0, 10], [0, 1, 20], [0, 0, 1]]}]},
@@ -161,6 +181,7 @@ TEST(SequenceTruth, ReadsMapsAndSymmetries)
   ASSERT_EQ(frames[1].objects.size(), 1u);
   const amcr_bench::TruthObject& o = frames[1].objects[0];
   EXPECT_EQ(o.prototype_size, cv::Size(256, 203));
+  EXPECT_EQ(o.source, "drawn");
   ASSERT_EQ(o.prototype_to_image.size(), 2u);  // the identity and the half turn of the score points
   const cv::Vec3d corner = o.prototype_to_image[1] * cv::Vec3d(7.5, 7.5, 1.0);
   EXPECT_NEAR(corner[0] / corner[2], 247.5 + 10, 1e-6);  // point 0 maps where the truth maps point 2
