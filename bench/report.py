@@ -44,6 +44,9 @@ Definitions (frames are numbered from 1):
   carry "state": the share of the matched reports per state. With copies in view, the affine error
   takes the instance of the label nearest the report (and, in `real-photos`, whose part is symmetric
   under a half turn, the better of the truth affine and it turned by half a turn).
+- recall funnel (AMCR, every suite with truth; bench/funnel_report.py): the share of frames at each
+  stage from a V-particle on the object to the report, and where each object not reported at the
+  right place at frame 60 stopped.
 - `paper-hd`, `clutter-only-hd` (the same frames at 1280x720): their figures beside those of `paper`
   and `clutter-only` of the same run; differences in points; corner errors in each suite's own pixels
   (1280x720 ones are 1.5x as large for the same error on the scene).
