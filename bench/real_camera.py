@@ -327,15 +327,32 @@ def detect(grey, geometry=MIRE):
     return corners, None
 
 
-def best_affine(h_proto):
-    """Least-squares 2x3 affine prototype->image over a 5x5 grid of the square."""
+def best_affine(h_proto, square_to_proto):
+    """Least-squares 2x3 affine prototype->image over a 5x5 grid of the target (`square_to_proto`:
+    the unit square -> prototype pixels)."""
     t = np.linspace(0, 1, 5)
     unit = np.array([[x, y] for y in t for x in t])
-    proto = apply(square_to_prototype(), unit)
+    proto = apply(square_to_proto, unit)
     image = apply(h_proto, proto)
     design = np.hstack([proto, np.ones((len(proto), 1))])
     solution, *_ = np.linalg.lstsq(design, image, rcond=None)
     return solution.T
+
+
+def corner_jumped(corners, previous, jump):
+    """Whether a corner moved by more than `jump` of the diagonal since the previous known frame
+    (None: no previous one)."""
+    diagonal = np.linalg.norm(corners[2] - corners[0])
+    return previous is not None and np.max(np.linalg.norm(corners - previous, axis=1)) > jump * diagonal
+
+
+def known_frame(corners, square_to_proto):
+    """The truth of a frame whose target corners (image px, clockwise from the prototype's top-left)
+    are known: the prototype->image homography, its best affine and the corners."""
+    h_unit = cv2.getPerspectiveTransform(np.float32([[0, 0], [1, 0], [1, 1], [0, 1]]), np.float32(corners))
+    h_proto = h_unit @ np.linalg.inv(square_to_proto)
+    h_proto /= h_proto[2, 2]
+    return {"homography": h_proto, "affine": best_affine(h_proto, square_to_proto), "corners": corners}
 
 
 def track(frames_grey, geometry=MIRE, jump=0.20):
@@ -353,17 +370,13 @@ def track(frames_grey, geometry=MIRE, jump=0.20):
             else:
                 shift = min((0, 2), key=lambda s: np.sum(np.linalg.norm(np.roll(corners, -s, 0) - last, axis=1)))
             corners = np.roll(corners, -shift, 0)
-            diagonal = np.linalg.norm(corners[2] - corners[0])
-            if previous is not None and np.max(np.linalg.norm(corners - previous, axis=1)) > jump * diagonal:
+            if corner_jumped(corners, previous, jump):
                 corners, reason = None, "a corner jumped more than %.0f%% of the diagonal" % (100 * jump)
         if corners is None:
             out.append({"unknown": reason})
             previous = None
             continue
-        h_unit = cv2.getPerspectiveTransform(np.float32([[0, 0], [1, 0], [1, 1], [0, 1]]), np.float32(corners))
-        h_proto = h_unit @ np.linalg.inv(square_to_prototype())
-        h_proto /= h_proto[2, 2]
-        out.append({"homography": h_proto, "affine": best_affine(h_proto), "corners": corners})
+        out.append(known_frame(corners, square_to_prototype(geometry)))
         previous = last = corners
     return out
 

@@ -50,7 +50,7 @@ from a frame.
 4-fold symmetric but for its shift (2.8% of the side off the face's centre): a quarter turn moves
 every dot by 0.165 spacings (4.0% of the side), a half turn by 0.233 (5.6%), 3.2 and 4.5 px on the
 largest views, about a dot's radius. The scoring takes the best of the four labellings. The best
-affine approximation (`best_affine`) is the least-squares affine over a 5x5 grid of the face mapped
+affine approximation (`real_camera.best_affine`) is the least-squares affine over a 5x5 grid of the face mapped
 by the homography. Over the known frames the target (the prototype's longer side at the affine's area
 scale) is 68-86 px and the affine's anisotropy 1.04-1.31 (`--check` prints both).
 
@@ -265,15 +265,6 @@ def detect(grey, geometry=CUBE):
     return corners, None
 
 
-def best_affine(h_proto, geometry=CUBE):
-    """Least-squares 2x3 affine prototype->image over a 5x5 grid of the face."""
-    t = np.linspace(0, 1, 5)
-    proto = apply(square_to_prototype(geometry), np.array([[x, y] for y in t for x in t]))
-    design = np.hstack([proto, np.ones((len(proto), 1))])
-    solution, *_ = np.linalg.lstsq(design, apply(h_proto, proto), rcond=None)
-    return solution.T
-
-
 def track(frames_grey, geometry=CUBE, jump=JUMP):
     """Steps 1-3 on every frame, with the jump check. Returns one dict per frame: {"homography": 3x3
     prototype->image, "affine": 2x3, "corners": 4x2} or {"unknown": reason}."""
@@ -281,18 +272,13 @@ def track(frames_grey, geometry=CUBE, jump=JUMP):
     previous = None  # corners of the previous frame, when it was known
     for grey in frames_grey:
         corners, reason = detect(grey, geometry)
-        if corners is not None and previous is not None:
-            diagonal = np.linalg.norm(corners[2] - corners[0])
-            if np.max(np.linalg.norm(corners - previous, axis=1)) > jump * diagonal:
-                corners, reason = None, "a corner jumped more than %.0f%% of the diagonal" % (100 * jump)
+        if corners is not None and real_camera.corner_jumped(corners, previous, jump):
+            corners, reason = None, "a corner jumped more than %.0f%% of the diagonal" % (100 * jump)
         if corners is None:
             out.append({"unknown": reason})
             previous = None
             continue
-        h_unit = cv2.getPerspectiveTransform(np.float32([[0, 0], [1, 0], [1, 1], [0, 1]]), np.float32(corners))
-        h_proto = h_unit @ np.linalg.inv(square_to_prototype(geometry))
-        h_proto /= h_proto[2, 2]
-        out.append({"homography": h_proto, "affine": best_affine(h_proto, geometry), "corners": corners})
+        out.append(real_camera.known_frame(corners, square_to_prototype(geometry)))
         previous = corners
     return out
 

@@ -35,6 +35,21 @@ def printed_view(h_proto, size=(384, 288), background=170, module=rc, ink_grey=2
     return np.clip(grey + np.random.default_rng(seed).normal(0, 2, grey.shape), 0, 255).astype(np.uint8)
 
 
+def check_known_frames(test, known, white, black):
+    """On each (grey, truth) of `known`: the prototype points `white` map onto white and `black`
+    onto black; the labelling does not turn (corner 0 stays near where it was)."""
+    previous = None
+    for grey, t in known:
+        for x, y in rc.apply(t["homography"], white):
+            test.assertGreater(grey[int(round(y)), int(round(x))], 150)
+        for x, y in rc.apply(t["homography"], black):
+            test.assertLess(grey[int(round(y)), int(round(x))], 90)
+        c = t["corners"]
+        if previous is not None:
+            test.assertLess(np.linalg.norm(c[0] - previous[0]), 0.2 * np.linalg.norm(c[2] - c[0]))
+        previous = c
+
+
 class DrawnTarget(unittest.TestCase):
     def test_corners_of_a_known_homography(self):
         corners = rc.prototype_corners()
@@ -72,19 +87,9 @@ class Mire2(unittest.TestCase):
         truth = rc.track(greys)
         known = [(g, t) for g, t in zip(greys, truth) if "homography" in t]
         self.assertGreaterEqual(len(known), 0.6 * len(files))
-        previous = None
-        for grey, t in known:
-            # The disc's and the dots' centres map onto white, the rectangle's inside onto black.
-            proto = rc.apply(rc.square_to_prototype(), rc.MIRE["dots"] + [rc.MIRE["disc_center"]])
-            for x, y in rc.apply(t["homography"], proto):
-                self.assertGreater(grey[int(round(y)), int(round(x))], 150)
-            for x, y in rc.apply(t["homography"], rc.apply(rc.square_to_prototype(), [[0.5, 0.08], [0.08, 0.5]])):
-                self.assertLess(grey[int(round(y)), int(round(x))], 90)
-            # The labelling does not flip: corner 0 stays near where it was.
-            c = t["corners"]
-            if previous is not None:
-                self.assertLess(np.linalg.norm(c[0] - previous[0]), 0.2 * np.linalg.norm(c[2] - c[0]))
-            previous = c
+        # The disc's and the dots' centres map onto white, the rectangle's inside onto black.
+        check_known_frames(self, known, rc.apply(rc.square_to_prototype(), rc.MIRE["dots"] + [rc.MIRE["disc_center"]]),
+                           rc.apply(rc.square_to_prototype(), [[0.5, 0.08], [0.08, 0.5]]))
 
 
 if __name__ == "__main__":
