@@ -77,46 +77,63 @@ class LargeMemory : public ::testing::TestWithParam<Target>
 {
 };
 
+/// The frame (1-based) from which recognizer `params` on `frames` of target `t` reports its label
+/// within kCornerTolerance of the truth, -1 when none of them does; `other` receives the first
+/// other report (label, iteration, place) when given.
+int firstCorrect(const Target& t, const std::vector<cv::Mat>& frames, const amcr::Params& params, std::string* other)
+{
+  const amcr::Affine truth =
+      amcr_test::makeAffine(amcr_test::prototypeCentre(), t.centre, t.rotation, t.scale_x, t.scale_y, t.shear);
+  const std::string label = amcr_test::shapeName(t.shape);
+  amcr::Recognizer recognizer(params, memory());
+  int first_correct = -1;
+  for (std::size_t k = 0; k < frames.size() && first_correct < 0; ++k)
+    for (const amcr::RecognizedObject& o : recognizer.step(frames[k]).objects)
+    {
+      if (o.label == label && amcr_test::cornerError(o.prototype_to_image, truth) <= kCornerTolerance)
+        first_correct = static_cast<int>(k) + 1;
+      else if (other && other->empty())
+      {
+        const cv::Point2d at = amcr::applyAffine(o.prototype_to_image, amcr_test::prototypeCentre());
+        *other = o.label + " at iteration " + std::to_string(k + 1) + " at (" + std::to_string(std::lround(at.x)) +
+                 ", " + std::to_string(std::lround(at.y)) + ")";
+      }
+    }
+  return first_correct;
+}
+
+/// `iterations` frames of target `t` over its clutter.
+std::vector<cv::Mat> renderTarget(const Target& t, int iterations)
+{
+  amcr_test::Scene scene;
+  scene.objects.push_back(
+      {t.shape, amcr_test::makeAffine(amcr_test::prototypeCentre(), t.centre, t.rotation, t.scale_x, t.scale_y, t.shear)});
+  scene.clutter = clutter(t.clutter_seed);
+  return amcr_test::renderSequence(scene, iterations);
+}
+
+const std::vector<Target> kTargets = {{ShapeId::kArrow, {330, 250}, 35 * M_PI / 180, 0.85, 0.75, 0.25, 101},
+                                      {ShapeId::kCrescent, {300, 230}, -50 * M_PI / 180, 0.9, 1.0, -0.2, 302},
+                                      {ShapeId::kFlag, {320, 240}, 100 * M_PI / 180, 0.9, 0.85, 0.1, 303}};
+
 TEST_P(LargeMemory, RecognizesTheTargetAmongSeventeenPrototypes)
 {
   const Target t = GetParam();
   ASSERT_EQ(memory()->size(), 17u);
-  const amcr::Affine truth =
-      amcr_test::makeAffine(amcr_test::prototypeCentre(), t.centre, t.rotation, t.scale_x, t.scale_y, t.shear);
-  amcr_test::Scene scene;
-  scene.objects.push_back({t.shape, truth});
-  scene.clutter = clutter(t.clutter_seed);
-  const std::vector<cv::Mat> frames = amcr_test::renderSequence(scene, kMaxIterations);
-  amcr::Recognizer recognizer(params(), memory());
   const std::string label = amcr_test::shapeName(t.shape);
-  int first_correct = -1;
   std::string wrong;
-  for (int k = 0; k < kMaxIterations && first_correct < 0; ++k)
-    for (const amcr::RecognizedObject& o : recognizer.step(frames[k]).objects)
-    {
-      if (o.label == label && amcr_test::cornerError(o.prototype_to_image, truth) <= kCornerTolerance)
-        first_correct = k + 1;
-      else if (wrong.empty())
-      {
-        const cv::Point2d at = amcr::applyAffine(o.prototype_to_image, amcr_test::prototypeCentre());
-        wrong = o.label + " at iteration " + std::to_string(k + 1) + " at (" + std::to_string(std::lround(at.x)) +
-                ", " + std::to_string(std::lround(at.y)) + ")";
-      }
-    }
+  const int first_correct = firstCorrect(t, renderTarget(t, kMaxIterations), params(), &wrong);
   std::cout << "[ e2e      ] " << label << " " << t.clutter_seed << ": first correct at iteration " << first_correct
             << (wrong.empty() ? "" : "; other report: " + wrong) << std::endl;
   EXPECT_GT(first_correct, 0) << label << " not reported within " << kCornerTolerance << " px in " << kMaxIterations
                               << " iterations" << (wrong.empty() ? "" : "; other report: " + wrong);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SeventeenPrototypes, LargeMemory,
-    ::testing::Values(Target{ShapeId::kArrow, {330, 250}, 35 * M_PI / 180, 0.85, 0.75, 0.25, 101},
-                      Target{ShapeId::kCrescent, {300, 230}, -50 * M_PI / 180, 0.9, 1.0, -0.2, 302},
-                      Target{ShapeId::kFlag, {320, 240}, 100 * M_PI / 180, 0.9, 0.85, 0.1, 303}),
-    [](const ::testing::TestParamInfo<Target>& info) {
-      return amcr_test::shapeName(info.param.shape) + "_" + std::to_string(info.param.clutter_seed);
-    });
+INSTANTIATE_TEST_SUITE_P(SeventeenPrototypes, LargeMemory, ::testing::ValuesIn(kTargets),
+                         [](const ::testing::TestParamInfo<Target>& info) {
+                           return amcr_test::shapeName(info.param.shape) + "_" +
+                                  std::to_string(info.param.clutter_seed);
+                         });
 
 // Recall, not a lottery: each scene with recognizer seeds 1-5 must be right
 // within kMaxIterations, and most of them within kQuickIterations (the aim
@@ -126,32 +143,17 @@ constexpr int kMinQuick = 9;  // of 15
 
 TEST(LargeMemoryRecall, EverySeedFindsEveryTarget)
 {
-  const std::vector<Target> targets = {
-      {ShapeId::kArrow, {330, 250}, 35 * M_PI / 180, 0.85, 0.75, 0.25, 101},
-      {ShapeId::kCrescent, {300, 230}, -50 * M_PI / 180, 0.9, 1.0, -0.2, 302},
-      {ShapeId::kFlag, {320, 240}, 100 * M_PI / 180, 0.9, 0.85, 0.1, 303}};
   std::string summary;
   int misses = 0, quick = 0;
-  for (const Target& t : targets)
+  for (const Target& t : kTargets)
   {
-    const amcr::Affine truth =
-        amcr_test::makeAffine(amcr_test::prototypeCentre(), t.centre, t.rotation, t.scale_x, t.scale_y, t.shear);
-    amcr_test::Scene scene;
-    scene.objects.push_back({t.shape, truth});
-    scene.clutter = clutter(t.clutter_seed);
-    const std::vector<cv::Mat> frames = amcr_test::renderSequence(scene, kMaxIterations);
-    const std::string label = amcr_test::shapeName(t.shape);
-    summary += "\n  " + label + ":";
+    const std::vector<cv::Mat> frames = renderTarget(t, kMaxIterations);
+    summary += "\n  " + amcr_test::shapeName(t.shape) + ":";
     for (std::uint64_t seed = 1; seed <= 5; ++seed)
     {
       amcr::Params p = params();
       p.seed = seed;
-      amcr::Recognizer recognizer(p, memory());
-      int first_correct = -1;
-      for (int k = 0; k < kMaxIterations && first_correct < 0; ++k)
-        for (const amcr::RecognizedObject& o : recognizer.step(frames[k]).objects)
-          if (o.label == label && amcr_test::cornerError(o.prototype_to_image, truth) <= kCornerTolerance)
-            first_correct = k + 1;
+      const int first_correct = firstCorrect(t, frames, p, nullptr);
       summary += " " + (first_correct > 0 ? std::to_string(first_correct) : std::string("-"));
       misses += first_correct > 0 ? 0 : 1;
       quick += first_correct > 0 && first_correct <= kQuickIterations ? 1 : 0;
