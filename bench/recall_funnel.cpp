@@ -46,16 +46,14 @@ struct TruePlace
 /// Whether prototype `p` is the very shape shown: of the object's label and image size, and,
 /// where the memory holds several instances of the label (a label directory), the instance drawn
 /// from the truth's source image (the shown instance may be held out of the memory).
-bool isShownShape(const amcr::PrototypeMemory& memory, std::size_t p, const TruthObject& object)
+/// `label_instances`: how many prototypes of the label the memory holds.
+bool isShownShape(const amcr::Prototype& prototype, int label_instances, const TruthObject& object)
 {
-  if (memory[p].label() != object.label || memory[p].originalSize() != object.prototype_size)
+  if (prototype.label() != object.label || prototype.originalSize() != object.prototype_size)
     return false;
-  int instances = 0;
-  for (std::size_t q = 0; q < memory.size(); ++q)
-    instances += memory[q].label() == object.label ? 1 : 0;
-  if (instances == 1)
+  if (label_instances == 1)
     return true;
-  const std::string& instance = memory[p].instance();
+  const std::string& instance = prototype.instance();
   const std::string file = instance.substr(instance.find_last_of('/') + 1);
   return !object.source.empty() && file == object.source;
 }
@@ -63,10 +61,13 @@ bool isShownShape(const amcr::PrototypeMemory& memory, std::size_t p, const Trut
 /// Every (prototype, truth map) pair under which the object's true place is judged.
 std::vector<TruePlace> truePlaces(const amcr::PrototypeMemory& memory, const TruthObject& object)
 {
+  int label_instances = 0;
+  for (std::size_t p = 0; p < memory.size(); ++p)
+    label_instances += memory[p].label() == object.label ? 1 : 0;
   std::vector<TruePlace> places;
   for (std::size_t p = 0; p < memory.size(); ++p)
   {
-    if (!isShownShape(memory, p, object))
+    if (!isShownShape(memory[p], label_instances, object))
       continue;
     const cv::Matx23d& o2t = memory[p].originalToTable();
     const cv::Matx33d original_to_table(o2t(0, 0), o2t(0, 1), o2t(0, 2), o2t(1, 0), o2t(1, 1), o2t(1, 2), 0, 0, 1);
@@ -117,19 +118,29 @@ void measureParticles(const amcr::Recognizer& recognizer, const std::vector<True
   const std::vector<amcr::VParticle>& v = filter.vParticles();
   const amcr::Affine to_input = recognizer.workingScale().toInput();
   const amcr::ProposalIndex* index = filter.proposalIndex();
-  const auto near = [&](double dx, double dy, double heading_error) {
-    return std::hypot(dx, dy) <= tolerance.table_px && heading_error <= tolerance.heading_deg;
+  // Where a V-particle lies in the prototype under one truth map: its true place and heading.
+  struct OnPlace
+  {
+    int prototype;
+    cv::Point2d table;
+    double heading;
+    /// Whether a hypothesis at (x, y) with heading `theta` is near it.
+    bool near(double x, double y, double theta, const FunnelTolerance& tolerance) const
+    {
+      return std::hypot(x - table.x, y - table.y) <= tolerance.table_px &&
+             headingDifferenceDeg(theta, heading) <= tolerance.heading_deg;
+    }
   };
   for (std::size_t i = 0; i < v.size(); ++i)
   {
     const cv::Point2d input = amcr::applyAffine(to_input, cv::Point2d(v[i].x, v[i].y));
     // The truth maps under which this V-particle lies on the object, with its true place there.
-    std::vector<std::pair<const TruePlace*, cv::Point2d>> on;
+    std::vector<OnPlace> on;
     for (const TruePlace& place : places)
     {
       const cv::Point2d table = place.at(input);
       if (insideSilhouette(memory[place.prototype], table))
-        on.emplace_back(&place, table);
+        on.push_back({place.prototype, table, place.heading(input, v[i].theta)});
     }
     if (on.empty())
       continue;
@@ -145,10 +156,8 @@ void measureParticles(const amcr::Recognizer& recognizer, const std::vector<True
         for (std::size_t rank = 0; rank < candidates.size(); ++rank)
         {
           const amcr::ProposalCandidate& c = candidates[rank];
-          const bool hit = std::any_of(on.begin(), on.end(), [&](const auto& place) {
-            return place.first->prototype == c.prototype &&
-                   near(c.x - place.second.x, c.y - place.second.y,
-                        headingDifferenceDeg(amcr::binToAngle(c.bin), place.first->heading(input, v[i].theta)));
+          const bool hit = std::any_of(on.begin(), on.end(), [&](const OnPlace& place) {
+            return place.prototype == c.prototype && place.near(c.x, c.y, amcr::binToAngle(c.bin), tolerance);
           });
           if (hit)
           {
@@ -169,18 +178,17 @@ void measureParticles(const amcr::Recognizer& recognizer, const std::vector<True
     for (std::size_t k = range.begin; k < range.end; ++k)
     {
       bool near_here = false;
-      for (const auto& [place, table] : on)
+      for (const OnPlace& place : on)
       {
-        if (m.prototype[k] != place->prototype)
+        if (m.prototype[k] != place.prototype)
           continue;
-        const double distance = std::hypot(m.x[k] - table.x, m.y[k] - table.y);
-        const double heading_error = headingDifferenceDeg(m.theta[k], place->heading(input, v[i].theta));
+        const double distance = std::hypot(m.x[k] - place.table.x, m.y[k] - place.table.y);
         if (funnel.best_table_px < 0 || distance < funnel.best_table_px)
         {
           funnel.best_table_px = distance;
-          funnel.best_heading_deg = heading_error;
+          funnel.best_heading_deg = headingDifferenceDeg(m.theta[k], place.heading);
         }
-        near_here = near_here || near(m.x[k] - table.x, m.y[k] - table.y, heading_error);
+        near_here = near_here || place.near(m.x[k], m.y[k], m.theta[k], tolerance);
       }
       if (!near_here)
         continue;
@@ -208,9 +216,9 @@ void measureParticles(const amcr::Recognizer& recognizer, const std::vector<True
     }
     const amcr::VParticleCluster& c = clusters[i];
     const bool cluster = amcr::isConverged(c, filter.params().cluster_min_share) &&
-                         std::any_of(on.begin(), on.end(), [&](const auto& place) {
-                           return place.first->prototype == c.prototype &&
-                                  std::hypot(c.mean.x - place.second.x, c.mean.y - place.second.y) <= tolerance.table_px;
+                         std::any_of(on.begin(), on.end(), [&](const OnPlace& place) {
+                           return place.prototype == c.prototype &&
+                                  std::hypot(c.mean.x - place.table.x, c.mean.y - place.table.y) <= tolerance.table_px;
                          });
     funnel.v_cluster += cluster ? 1 : 0;
   }
