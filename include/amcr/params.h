@@ -73,6 +73,11 @@ struct Params
   // working image, except min_object_size (input px).
   double max_ray_length = 200.0;  ///< longest ray, working px [10, 4000]
   double edge_threshold = 40.0;   ///< grey-level step over 2 px that counts as an edge [1, 255]
+  /// Local edge strength at which edge_threshold applies in full, grey
+  /// levels [0, 255]: where the strongest 2 px steps within about 50 px are
+  /// weaker, a point's threshold falls in proportion, down to the frame's
+  /// noise floor; 0 = edge_threshold everywhere (edge_thresholds.h).
+  double edge_full_strength = 100.0;
   double blur_sigma = 1.0;        ///< Gaussian smoothing before scanning, working px [0, 10]
   /// Longer side of the working image, input px [0, 4000]; a larger input is
   /// reduced to it (never enlarged), and results come back in input px; 0 = the input's own size.

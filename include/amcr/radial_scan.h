@@ -8,6 +8,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "amcr/edge_thresholds.h"
+
 namespace amcr
 {
 /// Result of one ray: the distance to the first edge along the ray, or
@@ -35,8 +37,12 @@ public:
   /// without it.
   RadialScanner(const cv::Mat& smoothed, double threshold, double max_length, const cv::Mat& free_space);
 
-  /// First edge along the ray from (x, y) in direction (dx, dy), |(dx,dy)| = 1.
-  /// The edge is placed at the largest step of the first run of samples above
+  /// The same with thresholds that follow the local contrast
+  /// (edge_thresholds.h): a ray uses the threshold at its origin.
+  RadialScanner(const cv::Mat& smoothed, const EdgeThresholds& thresholds, double max_length);
+
+  /// First edge along the ray from (x, y) in direction (dx, dy), |(dx,dy)| = 1,
+  /// by the threshold at (x, y). The edge is placed at the largest step of the first run of samples above
   /// the threshold, refined to sub-pixel by a parabola.
   RayHit scan(float x, float y, float dx, float dy) const;
 
@@ -63,7 +69,11 @@ public:
   /// Whether (x, y) lies where sample() may be called.
   bool contains(float x, float y) const { return x >= 0.f && y >= 0.f && x <= max_x_ && y <= max_y_; }
 
-  double threshold() const { return threshold_; }
+  /// The threshold at full contrast (edge_threshold).
+  double threshold() const { return thresholds_.full(); }
+  /// The threshold at (x, y) (threshold() unless it follows the local contrast).
+  float threshold(float x, float y) const { return thresholds_.at(x, y); }
+  const EdgeThresholds& thresholds() const { return thresholds_; }
 
   const cv::Mat& image() const { return image_; }
 
@@ -71,6 +81,7 @@ private:
   /// The edge of the run of steps above the threshold that starts at t (scan()).
   RayHit peakOfRun(float x, float y, float dx, float dy, int t, int steps, float last_step, float step, float current,
                    float next) const;
+  void checkInputs();
 
   /// Whole px of free space at (x, y) (0 without a map).
   int leap(float x, float y) const
@@ -91,7 +102,7 @@ private:
   float max_x_ = 0.f;
   float max_y_ = 0.f;
   const float* free_ = nullptr;
-  float threshold_;
+  EdgeThresholds thresholds_;
   float max_length_;
 };
 

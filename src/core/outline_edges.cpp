@@ -81,6 +81,12 @@ int nearestEdgeIndex(const NormalProfile& profile, double threshold, int sign)
   }
   return best_k;
 }
+
+/// The edge threshold where the outline point lies (it follows the local contrast).
+double localThreshold(const RadialScanner& scanner, const MappedPoint& p)
+{
+  return scanner.threshold(static_cast<float>(p.image.x), static_cast<float>(p.image.y));
+}
 }  // namespace
 
 std::vector<MappedPoint> mapOutline(const Prototype& prototype, const Affine& table_to_image)
@@ -109,7 +115,7 @@ std::vector<MappedPoint> mapOutline(const Prototype& prototype, const Affine& ta
 bool nearestEdge(const RadialScanner& scanner, const MappedPoint& p, double search, int sign, double& offset)
 {
   const NormalProfile profile(scanner, p, search);
-  const int k = nearestEdgeIndex(profile, scanner.threshold(), sign);
+  const int k = nearestEdgeIndex(profile, localThreshold(scanner, p), sign);
   offset = 0.5 * k;
   return std::abs(k) <= profile.reach();
 }
@@ -117,7 +123,7 @@ bool nearestEdge(const RadialScanner& scanner, const MappedPoint& p, double sear
 bool nearestEdgeSubpixel(const RadialScanner& scanner, const MappedPoint& p, double search, int sign, double& offset)
 {
   const NormalProfile profile(scanner, p, search);
-  const int k = nearestEdgeIndex(profile, scanner.threshold(), sign);
+  const int k = nearestEdgeIndex(profile, localThreshold(scanner, p), sign);
   if (std::abs(k) > profile.reach())
     return false;
   // Vertex of the parabola through (k - 1, k, k + 1): within half a sample of k.
@@ -134,7 +140,7 @@ int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint
   for (std::size_t i = 0; i < mapped.size(); i += kPolaritySampleStep)
   {
     double offset = 0.0, step = 0.0;
-    if (strongestEdge(NormalProfile(scanner, mapped[i], search), scanner.threshold(), offset, step))
+    if (strongestEdge(NormalProfile(scanner, mapped[i], search), localThreshold(scanner, mapped[i]), offset, step))
       (step > 0 ? rising : falling)++;
   }
   return rising >= falling ? 1 : -1;

@@ -16,8 +16,19 @@ RadialScanner::RadialScanner(const cv::Mat& smoothed, double threshold, double m
 RadialScanner::RadialScanner(const cv::Mat& smoothed, double threshold, double max_length, const cv::Mat& free_space)
   : image_(smoothed)
   , free_space_(free_space)
-  , threshold_(static_cast<float>(threshold))
+  , thresholds_(threshold)
   , max_length_(static_cast<float>(max_length))
+{
+  checkInputs();
+}
+
+RadialScanner::RadialScanner(const cv::Mat& smoothed, const EdgeThresholds& thresholds, double max_length)
+  : image_(smoothed), thresholds_(thresholds), max_length_(static_cast<float>(max_length))
+{
+  checkInputs();
+}
+
+void RadialScanner::checkInputs()
 {
   if (image_.type() != CV_8UC1)
     throw InputError("RadialScanner needs an 8-bit grey image, got " + cv::typeToString(image_.type()));
@@ -34,13 +45,13 @@ RadialScanner::RadialScanner(const cv::Mat& smoothed, double threshold, double m
   free_ = free_space_.empty() ? nullptr : free_space_.ptr<float>(0);
 }
 
-
 RayHit RadialScanner::scan(float x, float y, float dx, float dy) const
 {
   RayHit hit;
   auto inside = [&](float t) { return contains(x + t * dx, y + t * dy); };
   if (!inside(0.f))
     return hit;
+  const float threshold = thresholds_.at(x, y);
   const int steps = static_cast<int>(max_length_);
   // previous, current and next sample along the ray: the step at t is
   // |I(t+1) - I(t-1)|.
@@ -70,7 +81,7 @@ RayHit RadialScanner::scan(float x, float y, float dx, float dy) const
       return hit;
     const float next = sample(x + tn * dx, y + tn * dy);
     const float step = std::abs(next - before);
-    if (step >= threshold_)
+    if (step >= threshold)
       return peakOfRun(x, y, dx, dy, t, steps, last_step, step, current, next);
     last_step = step;
     before = current;

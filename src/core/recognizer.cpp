@@ -84,7 +84,8 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   scale_ = chooseWorkingScale(input_grey.size(), params_.working_resolution);
   const cv::Mat grey = toWorkingImage(input_grey, scale_);
   const cv::Mat scan_image = prepareScanImage(grey, params_.blur_sigma);
-  const RadialScanner scanner(scan_image, params_.edge_threshold, params_.max_ray_length);
+  const RadialScanner scanner(scan_image, EdgeThresholds(scan_image, params_.edge_threshold, params_.edge_full_strength),
+                              params_.max_ray_length);
   RecognitionResult result;
   double phase_start = budget_.now();
   result.times.prepare_ms = phase_start - start;
