@@ -66,7 +66,7 @@ import funnel_report  # bench/funnel_report.py, beside this script
 
 METHODS = ["amcr", "line2d", "sc", "orb", "hu", "ght"]
 SUITES = ["paper", "mpeg7-70", "within-class", "within-class-1330", "within-class-85", "similar", "clutter-only",
-          "two-objects", "copies", "real-photos", "oblique", "real-camera", "real-camera-cube", "paper-hd",
+          "two-objects", "copies", "real-photos", "oblique", "faint", "real-camera", "real-camera-cube", "paper-hd",
           "clutter-only-hd"]
 # The shown instance is in no memory (the label is the class): no affine or correspondence error.
 WITHIN_CLASS_SUITES = ["within-class", "within-class-1330", "within-class-85"]
@@ -783,7 +783,9 @@ shown (seeds of its own; distractors of classes not in memory); `similar`: the 3
 memory, no memory shape in view; `two-objects`: two of the paper memory at once, in the two
 halves of the frame. `oblique`: the `paper` sequences (same seeds, memory, clutter, motion) with
 the target seen obliquely: squashed along an image axis (random per sequence) to anisotropy
-1.5-3 (48-70 degrees off the normal), area kept, no shear. `memory-growth` (issue 14): 6
+1.5-3 (48-70 degrees off the normal), area kept, no shear. `faint`: the `paper` sequences (same
+seeds) printed faint and out of focus: the contrast cut to a quarter about grey 128 after the
+lighting, 2 px (sigma) of defocus added to the drawn blur, the noise as drawn. `memory-growth` (issue 14): 6
 sequences (2 with --quick) whose targets are 3 fixed classes, run once per memory of 3, 17, 35 and
 70 prototypes (nested: 3 of the paper's 17, the 17, the 17 and 18 other classes, all 70; fixed,
 whatever the seed); distractors are random blobs. `paper-hd` and `clutter-only-hd` (issue 14): the

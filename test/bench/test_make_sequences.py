@@ -58,6 +58,7 @@ class SeedIndex(unittest.TestCase):
                                                       "real-photos"]], [8, 9, 10, 11, 12])
         self.assertEqual([ms.SEED_INDEX[s] for s in ["within-class-1330", "within-class-85"]], [13, 14])
         self.assertEqual(ms.SEED_INDEX["real-camera-cube"], 15)
+        self.assertEqual(ms.SEED_INDEX["faint"], 16)
         self.assertEqual(len(set(ms.SEED_INDEX.values())), len(ms.SEED_INDEX))
         self.assertEqual(set(ms.SEED_INDEX), set(ms.SUITES))
 
@@ -90,6 +91,24 @@ class Suites(unittest.TestCase):
                     for o in frame["objects"]:
                         for n in spec["memories"]:
                             self.assertIn(o["label"], memories[n])
+
+    def test_faint_frames_are_the_paper_ones_faint_and_defocused(self):
+        memory = ms.memory_of("paper17", self.classes, MPEG7)
+        with tempfile.TemporaryDirectory() as tmp:
+            truths, frames = {}, {}
+            for suite in ("paper", "faint"):
+                truths[suite] = render_truth(tmp, suite, suite, 0, ms.SUITES[suite], memory, self.classes, 3)
+                frames[suite] = cv2.imread(os.path.join(tmp, suite, "frames", "frame_0002.png"),
+                                           cv2.IMREAD_GRAYSCALE).astype(float)
+        sharp, faint = truths["paper"], truths["faint"]
+        self.assertEqual(sharp["frames"], faint["frames"])  # the same targets at the same poses
+        self.assertEqual(faint["contrast"], 0.25)
+        self.assertAlmostEqual(faint["blur_sigma"], np.hypot(sharp["blur_sigma"], 2.0), places=3)
+        self.assertEqual(sharp["noise_sigma"], faint["noise_sigma"])
+        # A quarter of the grey-level spread (the noise, drawn alike, widens it a little).
+        spread = {k: np.percentile(f, 99) - np.percentile(f, 1) for k, f in frames.items()}
+        self.assertLess(spread["faint"], 0.35 * spread["paper"])
+        self.assertGreater(spread["faint"], 0.15 * spread["paper"])
 
     def test_hd_frames_and_truth_are_the_640_ones_scaled(self):
         memory = ms.memory_of("paper17", self.classes, MPEG7)
