@@ -4,6 +4,7 @@
 // relative thresholds and not with the absolute one; the strong disc keeps
 // the full threshold; flat noise never gives an edge.
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -100,6 +101,21 @@ TEST(EdgeThresholds, TheFaintOutlineIsAnEdgeOnlyRelativeToItsStrength)
       noise_hits += any;
     }
   EXPECT_EQ(noise_hits, 0) << "rays in flat noise met edges";
+}
+
+TEST(EdgeThresholds, AnyPointGetsAThresholdOfTheFrame)
+{
+  // Points off the image, infinite or NaN (an outline mapped by a degenerate
+  // transform) take the nearest tile's threshold, never one out of range.
+  const cv::Mat scan = drawnScanImage();
+  const amcr::EdgeThresholds thresholds(scan, kThreshold, kFullStrength);
+  for (const float v : {-1e9f, -5.f, 1e9f, std::numeric_limits<float>::infinity(),
+                        -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()})
+  {
+    const float t = thresholds.at(v, v);
+    EXPECT_GE(t, thresholds.lowest()) << v;
+    EXPECT_LE(t, kThreshold) << v;
+  }
 }
 
 TEST(EdgeThresholds, UniformWhenFullStrengthIsZero)

@@ -65,7 +65,11 @@ public:
   const cv::Mat& grid() const { return grid_; }
 
 private:
-  static float clampTo(float v, int hi) { return v < 0.f ? 0.f : (v > static_cast<float>(hi) ? static_cast<float>(hi) : v); }
+  /// v within [0, hi]; NaN (a point mapped by a degenerate transform) gives 0.
+  static float clampTo(float v, int hi)
+  {
+    return v > 0.f ? (v < static_cast<float>(hi) ? v : static_cast<float>(hi)) : 0.f;
+  }
 
   cv::Mat grid_;
   float full_ = 0.f;
