@@ -287,6 +287,27 @@ TEST(EndToEndLowContrast, AFaintDefocusedPrintIsRecognized)
       << "the absolute threshold found the faint outline: the scene does not test the relative thresholds";
 }
 
+// The frontal candidates from the radial-profile index (profile_index: 1):
+// the sharp scenes of two targets are recognized as within the same bounds.
+TEST(EndToEndProfileIndex, RecognizesWithProposalsFromTheRadialProfile)
+{
+  for (const Target& t : {kArrow101, Target{ShapeId::kStar, {340, 240}, 110 * M_PI / 180, 0.8, 0.9, 0.15, 103}})
+  {
+    amcr::Affine truth;
+    const std::vector<cv::Mat> frames = renderTarget(t, truth);
+    amcr::Params p = params();
+    p.profile_index = true;
+    amcr::Recognizer recognizer(p, memory());
+    int wrong_reports = 0;
+    const std::string label = amcr_test::shapeName(t.shape);
+    const int first_correct = firstCorrect(recognizer, frames, label, truth, wrong_reports);
+    std::cout << "[ e2e      ] profile index, " << label << ": first correct at iteration " << first_correct << ", "
+              << wrong_reports << " reports of other labels" << std::endl;
+    EXPECT_GT(first_correct, 0) << label << " never reported within " << kCornerTolerance << " px";
+    EXPECT_EQ(wrong_reports, 0) << label;
+  }
+}
+
 // Clutter only: random shapes, the two silhouettes that are not in memory,
 // lines, gradient, noise. Nothing may be reported.
 TEST(EndToEndClutter, NothingIsReported)

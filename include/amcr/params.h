@@ -50,6 +50,11 @@ struct Params
   double proposal_correction = 0.0;
   int index_stride = 6;      ///< table px between the indexed points of a prototype [1, 64]
   int index_candidates = 64; ///< places a V-particle's query returns [1, 1000]
+  /// The frontal candidates from the radial-profile index (profile_index.h):
+  /// the best aligned 8 of the index_candidates places nearest in profile
+  /// key; false (the default: more false reports, README "Proposals from
+  /// the radial profile"): from the 8-ray index (proposal_index.h).
+  bool profile_index = false;
   /// Most entries the index holds [0, 1e9]; a memory that would need more
   /// is indexed at a larger stride (ProposalIndex); 0 = no limit.
   int index_max_entries = 3000000;

@@ -28,6 +28,7 @@
 #include "amcr/observation_model.h"
 #include "amcr/params.h"
 #include "amcr/particles.h"
+#include "amcr/profile_index.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/proposal_index.h"
 #include "amcr/prototype_prior.h"
@@ -160,6 +161,13 @@ public:
   double meanMParticles() const;
   /// The proposal index, or null when index_share is 0.
   const ProposalIndex* proposalIndex() const { return index_.get(); }
+  /// The places V-particle `v` is proposed seen frontally, best first: from
+  /// the radial-profile index when it is on and the V-particle's profile
+  /// can be read (the best aligned kProfileCandidates), else from the 8-ray
+  /// index (`count` of them); empty without an index.
+  std::vector<ProposalCandidate> frontalCandidates(const VParticle& v, const RadialScanner& scanner, int count) const;
+  /// Frontal candidates kept from the radial-profile index.
+  static constexpr int kProfileCandidates = 8;
   /// What the last memory's index build left out (a line per prototype).
   const std::vector<std::string>& indexWarnings() const { return index_warnings_; }
   /// The prototype of each of a V-particle's M-particle slots at seeding.
@@ -218,6 +226,10 @@ private:
   /// is 0); its warnings go to `warnings`.
   std::shared_ptr<const ProposalIndex> buildIndex(const PrototypeMemory& memory, const PrototypePrior& prior,
                                                   std::vector<std::string>& warnings) const;
+  /// The radial-profile index of `memory` under `prior` (null when
+  /// index_share is 0 or profile_index is off); its warnings go to `warnings`.
+  std::shared_ptr<const ProfileIndex> buildProfileIndex(const PrototypeMemory& memory, const PrototypePrior& prior,
+                                                        std::vector<std::string>& warnings) const;
   /// ray_correspondence affine: gives M-particle `index` a view shape,
   /// frontal or drawn (corrected_scan.h); true when it is not frontal.
   bool drawShape(MParticleSet& set, std::size_t index, Rng& rng) const;
@@ -254,6 +266,7 @@ private:
   MParticleSet m_scratch_;
   std::vector<LeadingHypothesis> leading_;  // injected at the M-resamplings
   std::shared_ptr<const ProposalIndex> index_;  // null when index_share is 0
+  std::shared_ptr<const ProfileIndex> profile_index_;  // null when index_share is 0 or profile_index is off
   std::vector<std::string> index_warnings_;
   std::vector<int> m_count_;                   // M-particles each V-particle holds
   cv::Mat held_mask_;  // CV_16UC1 of image_size_: 0 free, k + 1 inside held object k's hull; empty: none held

@@ -47,6 +47,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(proposal_correction, "", 0, 1, "exponent of the importance weight pi/q of a new M-particle under the mixture proposal; 1 = exact importance sampling, 0 = sensor resetting"),
       AMCR_INT(index_stride, "prototype px", 1, 64, "distance between the indexed points of a prototype"),
       AMCR_INT(index_candidates, "", 1, 1000, "places of the memory a V-particle's query returns"),
+      AMCR_INT(profile_index, "", 0, 1, "1: the frontal candidates are the best aligned 8 of the index_candidates places nearest in radial-profile key (72 rays); 0: from the 8-ray index"),
       AMCR_INT(index_max_entries, "", 0, 1e9, "most entries of the proposal index; a larger memory is indexed at a larger stride; 0 = no limit"),
       AMCR_INT(prototype_size, "px", 32, 512, "longer side of a prototype in its lookup table"),
       AMCR_INT(table_stride, "table px", 1, 4, "spacing of the lookup table's nodes; 1 = every pixel (exact), s = one per s x s block (s^2 less memory and build time)"),

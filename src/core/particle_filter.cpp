@@ -56,6 +56,7 @@ ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const Proto
   , rng_(params.seed)
 {
   index_ = buildIndex(*memory_, prior_, index_warnings_);
+  profile_index_ = buildProfileIndex(*memory_, prior_, index_warnings_);
   reset();
 }
 
@@ -72,6 +73,21 @@ std::shared_ptr<const ProposalIndex> ParticleFilter::buildIndex(const PrototypeM
       memory, params_.index_stride, prior.activeMask(),
       [&warnings](const std::string& line) { warnings.push_back(line); }, cache.readable() ? &cache : nullptr,
       static_cast<std::size_t>(params_.index_max_entries));
+}
+
+std::shared_ptr<const ProfileIndex> ParticleFilter::buildProfileIndex(const PrototypeMemory& memory,
+                                                                      const PrototypePrior& prior,
+                                                                      std::vector<std::string>& warnings) const
+{
+  if (params_.index_share <= 0.0 || !params_.profile_index)
+    return nullptr;
+  // One entry per place (the 8-ray index holds one per place and heading):
+  // at half the 8-ray index's stride it is still the smaller.
+  auto index = std::make_shared<const ProfileIndex>(memory, std::max(1, params_.index_stride / 2), prior.activeMask());
+  for (const std::string& label : index->leftOut())
+    warnings.push_back("prototype '" + label + "' is left out of the radial-profile index: too few of its pixels see "
+                       "an edge in nearly every direction within the table's reach; the 8-ray index still seeds it");
+  return index;
 }
 
 void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
@@ -101,10 +117,12 @@ void ParticleFilter::swapMemory(std::shared_ptr<const PrototypeMemory> memory)
   PrototypePrior prior = checkedPrior(*memory, params_);
   std::vector<std::string> warnings;
   std::shared_ptr<const ProposalIndex> index = buildIndex(*memory, prior, warnings);
+  std::shared_ptr<const ProfileIndex> profile_index = buildProfileIndex(*memory, prior, warnings);
   // Nothing failed: swap everything at once (on an error the old memory stays).
   memory_ = std::move(memory);
   prior_ = std::move(prior);
   index_ = std::move(index);
+  profile_index_ = std::move(profile_index);
   index_warnings_ = std::move(warnings);
 }
 
@@ -373,7 +391,13 @@ void ParticleFilter::findCandidates(const VParticle& v, const RadialScanner& sca
       oblique_views ? std::min(params_.index_candidates - 1,
                                static_cast<int>(std::lround(params_.oblique_share * params_.index_candidates)))
                     : 0;
-  work.candidates = index_->query(v.rays, params_.index_candidates - oblique_count);
+  const int frontal_count = params_.index_candidates - oblique_count;
+  work.candidates = frontalCandidates(v, scanner, frontal_count);
+  // The profile index's few best stand for all frontal_count: the share of
+  // frontal and oblique candidates (the draw picks one uniformly) stays.
+  for (std::size_t i = 0; !work.candidates.empty() && work.candidates.size() < static_cast<std::size_t>(frontal_count);
+       ++i)
+    work.candidates.push_back(work.candidates[i]);
   if (oblique_count == 0)
     return;
   float shape[3];
@@ -384,6 +408,22 @@ void ParticleFilter::findCandidates(const VParticle& v, const RadialScanner& sca
     std::copy(shape, shape + 3, c.shape);
     work.candidates.push_back(c);
   }
+}
+
+std::vector<ProposalCandidate> ParticleFilter::frontalCandidates(const VParticle& v, const RadialScanner& scanner,
+                                                                 int count) const
+{
+  if (!index_)
+    return {};
+  RadialProfile profile;
+  if (profile_index_ && scanProfile(scanner, v.x, v.y, v.theta, profile))
+  {
+    std::vector<ProposalCandidate> found =
+        profile_index_->query(*memory_, profile, params_.index_candidates, kProfileCandidates);
+    if (!found.empty())
+      return found;
+  }
+  return index_->query(v.rays, count);
 }
 
 // A uniform position inside the prototype; the heading from the proposal
