@@ -1,8 +1,11 @@
-// Two answers of proposal-index queries compared entry by entry, for the
+// Answers of proposal-index queries: two compared entry by entry, for the
 // tests that hold two indexes (built and read back, one thread and many) to
-// the same answers.
+// the same answers; and whether one holds a true place.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -25,5 +28,23 @@ inline void expectSameCandidates(const std::vector<amcr::ProposalCandidate>& a,
     EXPECT_EQ(a[i].bin, b[i].bin) << "candidate " << i;
     EXPECT_EQ(a[i].distance, b[i].distance) << "candidate " << i;
   }
+}
+
+/// Angular distance in heading bins, modulo a turn.
+inline int binDistance(int a, int b)
+{
+  const int d = std::abs(a - b) % amcr::kDirectionBins;
+  return std::min(d, amcr::kDirectionBins - d);
+}
+
+/// Whether a candidate names prototype `p` within `radius` table px of
+/// `at` and within `bins` of heading bin `bin`.
+inline bool hits(const std::vector<amcr::ProposalCandidate>& candidates, int p, const cv::Point2d& at, int bin,
+                 double radius, int bins)
+{
+  for (const amcr::ProposalCandidate& c : candidates)
+    if (c.prototype == p && std::hypot(c.x - at.x, c.y - at.y) <= radius && binDistance(c.bin, bin) <= bins)
+      return true;
+  return false;
 }
 }  // namespace amcr_test

@@ -16,6 +16,7 @@
 #include "amcr/profile_index.h"
 #include "amcr/proposal_index.h"
 #include "amcr/radial_scan.h"
+#include "candidate_lists.h"
 #include "scene_drawing.h"
 
 namespace
@@ -27,20 +28,8 @@ constexpr int kSearch = 64;      // the default index_candidates
 constexpr int kKeep = 8;         // ParticleFilter::kProfileCandidates
 constexpr double kRadius = 2.0 * kStride;  // table px from the true place that still counts as it
 
-int binDistance(int a, int b)
-{
-  const int d = std::abs(a - b) % amcr::kDirectionBins;
-  return std::min(d, amcr::kDirectionBins - d);
-}
-
-bool hits(const std::vector<amcr::ProposalCandidate>& candidates, int p, const cv::Point2d& at, int bin, double radius,
-          int bins)
-{
-  for (const amcr::ProposalCandidate& c : candidates)
-    if (c.prototype == p && std::hypot(c.x - at.x, c.y - at.y) <= radius && binDistance(c.bin, bin) <= bins)
-      return true;
-  return false;
-}
+using amcr_test::binDistance;
+using amcr_test::hits;
 
 class ProfileIndexTest : public ::testing::Test
 {

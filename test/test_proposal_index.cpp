@@ -16,6 +16,7 @@
 #include "amcr/errors.h"
 #include "amcr/proposal_index.h"
 #include "amcr/radial_scan.h"
+#include "candidate_lists.h"
 #include "scene_drawing.h"
 
 namespace
@@ -25,23 +26,8 @@ using amcr_test::ShapeId;
 constexpr int kStride = 6;       // table px, the default index_stride
 constexpr int kCandidates = 64;  // the default index_candidates
 
-/// Angular distance in bins, modulo a turn.
-int binDistance(int a, int b)
-{
-  const int d = std::abs(a - b) % amcr::kDirectionBins;
-  return std::min(d, amcr::kDirectionBins - d);
-}
-
-/// Whether a candidate names prototype `p` within `radius` table px of
-/// `at` and within `bins` of heading bin `bin`.
-bool hits(const std::vector<amcr::ProposalCandidate>& candidates, int p, const cv::Point2d& at, int bin, double radius,
-          int bins)
-{
-  for (const amcr::ProposalCandidate& c : candidates)
-    if (c.prototype == p && std::hypot(c.x - at.x, c.y - at.y) <= radius && binDistance(c.bin, bin) <= bins)
-      return true;
-  return false;
-}
+using amcr_test::binDistance;
+using amcr_test::hits;
 
 using amcr_test::tableRays;
 
