@@ -24,6 +24,14 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
                       double tolerance);
 
+/// The tolerance of the score for an object whose outline is `object_size`
+/// px long (outlineSize): `relative` of that size, never above `tolerance`
+/// and never below 1 px (edges are found to a pixel even out of focus);
+/// `tolerance` itself when `relative` is 0. Likeness of shape is free of
+/// scale: a blob that follows an outline within 2 px at 90 px long resembles
+/// it no more closely than one within 6 px at 270 px.
+double verifyTolerance(double object_size, double tolerance, double relative);
+
 /// Size of an outline in the image: the longer side, in px, of the smallest
 /// (rotated) rectangle around its points; 0 for fewer than 2 points.
 double outlineSize(const std::vector<cv::Point2d>& outline);

@@ -128,6 +128,10 @@ struct Params
   /// Distance along the outline's normal within which an outline point
   /// finds its image edge in the score, working px [0.5, 20].
   double verify_tolerance = 2.0;
+  /// The score's tolerance as a share of the object's size (the longer side
+  /// of its outline's box) [0, 0.1]: the smaller of the two applies, never
+  /// less than 1 px; 0 = verify_tolerance at every size (outline_fit.h).
+  double verify_relative_tolerance = 0.008;
   double min_object_size = 64.0;      ///< smallest object reported: longer side of its outline's box, input px [0, 4000]
 
   // Objects: life cycle and attention (track_registry.h).

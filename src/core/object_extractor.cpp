@@ -53,6 +53,12 @@ struct ExtractionInput
   const PrototypeMemory& memory;
 };
 
+/// The score's tolerance for an object `size` working px long.
+double scoreTolerance(const Params& params, double size)
+{
+  return verifyTolerance(size, params.verify_tolerance, params.verify_relative_tolerance);
+}
+
 /// A candidate for a prototype at a table -> image affine (score, support,
 /// correspondences, outline); false when the affine is out of bounds or the
 /// object too small. With a `perspective` whose homography is used, the
@@ -80,9 +86,11 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   for (const auto& o : p.outline())
     object.outline.push_back(toImage(cv::Point2d(o.position)));
   // Too small to tell shapes apart: neither reported nor fed back to attention.
-  if (outlineSize(object.outline) < in.params.min_object_size)
+  const double size = outlineSize(object.outline);
+  if (size < in.params.min_object_size)
     return false;
-  object.score = use_homography ? perspective->support : outlineSupport(p, in.scanner, table_to_image, in.params.verify_tolerance);
+  object.score = use_homography ? perspective->support
+                                : outlineSupport(p, in.scanner, table_to_image, scoreTolerance(in.params, size));
   object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
   object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
   object.homography_valid = use_homography;
@@ -116,7 +124,7 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
     return;
   const int prototype = candidate.object.prototype_id;
   PerspectiveRule rule;
-  rule.tolerance = in.params.verify_tolerance;
+  rule.tolerance = scoreTolerance(in.params, outlineSize(candidate.object.outline));
   rule.max_scale = in.params.max_affine_scale;
   const PerspectiveFit fit = choosePerspective(in.memory[prototype], in.scanner, candidate.table_to_image,
                                                candidate.object.score, in.params.refine_iterations,

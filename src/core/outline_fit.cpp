@@ -69,6 +69,14 @@ double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, 
   return mappedOutlineSupport(scanner, mapOutline(prototype, table_to_image), prototype.outline().size(), tolerance);
 }
 
+double verifyTolerance(double object_size, double tolerance, double relative)
+{
+  constexpr double kMinTolerance = 1.0;  // px
+  if (!(relative > 0.0))
+    return tolerance;
+  return std::min(tolerance, std::max(kMinTolerance, relative * object_size));
+}
+
 double outlineSize(const std::vector<cv::Point2d>& outline)
 {
   if (outline.size() < 2)

@@ -84,6 +84,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_INT(fit_homography, "", 0, 1, "1: a homography is fitted after the affine and used when the outline demands it"),
       AMCR_DOUBLE(decision_threshold, "", 0, 1, "smallest score reported"),
       AMCR_DOUBLE(verify_tolerance, "working px", 0.5, 20, "distance along the outline's normal within which an outline point finds its image edge in the score"),
+      AMCR_DOUBLE(verify_relative_tolerance, "share of the object's size", 0, 0.1, "the score's tolerance as a share of the longer side of the object's outline box: the smaller of it and verify_tolerance applies, never below 1 px; 0 = verify_tolerance at every size"),
       AMCR_DOUBLE(min_object_size, "input px", 0, 4000, "smallest object reported: longer side of the smallest rectangle around its outline"),
       AMCR_INT(confirm_frames, "frames", 1, 1000, "frames an object is reported in before it is confirmed (tentative until then)"),
       AMCR_INT(lost_frames, "frames", 1, 1000, "frames in a row without a report after which an object's track ends (lost)"),
