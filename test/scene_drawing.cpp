@@ -407,6 +407,20 @@ amcr::RaySignature tableRays(const amcr::Prototype& prototype, int x, int y, int
   return s;
 }
 
+std::vector<cv::Point2d> wavyOval(cv::Point2d centre, double a, double b, double wave)
+{
+  std::vector<cv::Point2d> out;
+  for (int k = 0; k < 720; ++k)
+  {
+    const double t = k * M_PI / 360.0;
+    const cv::Point2d on(a * std::cos(t), b * std::sin(t));
+    const double r = std::hypot(on.x, on.y);
+    const double scale = (r + wave * std::sin(5.0 * t)) / r;
+    out.emplace_back(centre.x + scale * on.x, centre.y + scale * on.y);
+  }
+  return out;
+}
+
 cv::Mat drawRandomSilhouette(std::uint64_t seed)
 {
   std::mt19937_64 gen(seed);

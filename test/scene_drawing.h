@@ -60,6 +60,11 @@ amcr::RaySignature tableRays(const amcr::Prototype& prototype, int x, int y, int
 /// clutter's random shapes), filled at 255 on 0, kPrototypeImageSize square.
 cv::Mat drawRandomSilhouette(std::uint64_t seed);
 
+/// An oval of semi-axes a x b px about `centre` whose radius waves by
+/// `wave` px five times round (0: the oval itself), 720 vertices: a
+/// look-alike of the oval that follows its outline within `wave` px.
+std::vector<cv::Point2d> wavyOval(cv::Point2d centre, double a, double b, double wave);
+
 /// The prototype image: kPrototypeImageSize x kPrototypeImageSize, CV_8UC1,
 /// the filled shape at 255 on 0 (white_on_black) or 0 on 255. Antialiased
 /// edges unless `antialiased` is false (then only 0 and 255 occur).

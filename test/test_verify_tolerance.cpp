@@ -25,22 +25,6 @@ constexpr double kDecisionThreshold = 0.75;  // the default decision_threshold
 constexpr double kRelative = 0.008;          // the default verify_relative_tolerance
 constexpr double kFixed = 2.0;               // the default verify_tolerance, px
 
-/// An oval of semi-axes a x b about `centre` whose radius waves by `wave` px
-/// five times round (0: the oval itself), 720 vertices.
-std::vector<cv::Point2d> wavyOval(cv::Point2d centre, double a, double b, double wave)
-{
-  std::vector<cv::Point2d> out;
-  for (int k = 0; k < 720; ++k)
-  {
-    const double t = k * M_PI / 360.0;
-    const cv::Point2d on(a * std::cos(t), b * std::sin(t));
-    const double r = std::hypot(on.x, on.y);
-    const double scale = (r + wave * std::sin(5.0 * t)) / r;
-    out.emplace_back(centre.x + scale * on.x, centre.y + scale * on.y);
-  }
-  return out;
-}
-
 struct OvalScene
 {
   std::shared_ptr<amcr::PrototypeMemory> memory = std::make_shared<amcr::PrototypeMemory>();
@@ -57,16 +41,16 @@ OvalScene ovalScene()
   OvalScene scene;
   const cv::Point2d centre = amcr_test::prototypeCentre();
   cv::Mat prototype(amcr_test::kPrototypeImageSize, amcr_test::kPrototypeImageSize, CV_8UC1, cv::Scalar(0));
-  amcr_test::fillPolygon(prototype, wavyOval(centre, 80, 50, 0.0), 255);
+  amcr_test::fillPolygon(prototype, amcr_test::wavyOval(centre, 80, 50, 0.0), 255);
   scene.memory->add("oval", prototype, amcr::Params());
 
   const double scale = 0.6;
   scene.exact = amcr_test::makeAffine(centre, {160, 200}, 0.3, scale, scale, 0.0);
   scene.look_alike = amcr_test::makeAffine(centre, {440, 260}, 0.3, scale, scale, 0.0);
   cv::Mat image(480, 640, CV_8UC1, cv::Scalar(200));
-  amcr_test::fillPolygon(image, amcr_test::transformPoints(scene.exact, wavyOval(centre, 80, 50, 0.0)), 40);
+  amcr_test::fillPolygon(image, amcr_test::transformPoints(scene.exact, amcr_test::wavyOval(centre, 80, 50, 0.0)), 40);
   // 3 px in prototype px: 1.8 px in the image.
-  amcr_test::fillPolygon(image, amcr_test::transformPoints(scene.look_alike, wavyOval(centre, 80, 50, 3.0)), 40);
+  amcr_test::fillPolygon(image, amcr_test::transformPoints(scene.look_alike, amcr_test::wavyOval(centre, 80, 50, 3.0)), 40);
   scene.image = amcr_test::addNoise(image, 3.0, 7);
   return scene;
 }
