@@ -42,6 +42,10 @@ using RayDescriptor = std::array<float, kFeatureRays>;
 /// alone) unless all 8 rays met an edge, none closer than 2 px.
 bool describeRays(const RaySignature& rays, RayDescriptor& out);
 
+/// The prototypes an index of a memory of `memory_size` holds, in memory
+/// order: those `active` marks (a prior's active mask), every one when it is empty.
+std::vector<int> indexedPrototypes(std::size_t memory_size, const std::vector<bool>& active);
+
 /// One place of the memory that looks like a V-particle's scan.
 struct ProposalCandidate
 {

@@ -33,6 +33,7 @@ struct Candidate
   RecognizedObject object;
   std::vector<int> v_particles;  // V indices, one per correspondence
   Affine table_to_image;         // the fitted affine, table px -> input px
+  double score_tolerance = 0.0;  // px: the score's tolerance at the object's size
 };
 
 /// Where the fit of one prototype starts: a group's affine and the affines
@@ -52,12 +53,6 @@ struct ExtractionInput
   const Params& params;
   const PrototypeMemory& memory;
 };
-
-/// The score's tolerance for an object `size` working px long.
-double scoreTolerance(const Params& params, double size)
-{
-  return verifyTolerance(size, params.verify_tolerance, params.verify_relative_tolerance);
-}
 
 /// A candidate for a prototype at a table -> image affine (score, support,
 /// correspondences, outline); false when the affine is out of bounds or the
@@ -89,8 +84,9 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   const double size = outlineSize(object.outline);
   if (size < in.params.min_object_size)
     return false;
+  candidate.score_tolerance = verifyTolerance(size, in.params.verify_tolerance, in.params.verify_relative_tolerance);
   object.score = use_homography ? perspective->support
-                                : outlineSupport(p, in.scanner, table_to_image, scoreTolerance(in.params, size));
+                                : outlineSupport(p, in.scanner, table_to_image, candidate.score_tolerance);
   object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
   object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
   object.homography_valid = use_homography;
@@ -124,7 +120,7 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
     return;
   const int prototype = candidate.object.prototype_id;
   PerspectiveRule rule;
-  rule.tolerance = scoreTolerance(in.params, outlineSize(candidate.object.outline));
+  rule.tolerance = candidate.score_tolerance;
   rule.max_scale = in.params.max_affine_scale;
   const PerspectiveFit fit = choosePerspective(in.memory[prototype], in.scanner, candidate.table_to_image,
                                                candidate.object.score, in.params.refine_iterations,

@@ -148,10 +148,7 @@ ProfileIndex::ProfileIndex(const PrototypeMemory& memory, int stride, const std:
 {
   if (stride < 1)
     throw ParameterError("the profile index's stride must be at least 1 table px, got " + std::to_string(stride));
-  std::vector<int> indexed;
-  for (std::size_t p = 0; p < memory.size(); ++p)
-    if (active.empty() || active[p])
-      indexed.push_back(static_cast<int>(p));
+  const std::vector<int> indexed = indexedPrototypes(memory.size(), active);
   // Each prototype's places on OpenCV's threads, merged in prototype order.
   std::vector<std::vector<Entry>> parts(indexed.size());
   std::vector<std::vector<ProfileKey>> part_keys(indexed.size());

@@ -68,6 +68,15 @@ bool describeRays(const RaySignature& rays, RayDescriptor& out)
   return describe(rays, out, log_mean);
 }
 
+std::vector<int> indexedPrototypes(std::size_t memory_size, const std::vector<bool>& active)
+{
+  std::vector<int> indexed;
+  for (std::size_t p = 0; p < memory_size; ++p)
+    if (active.empty() || active[p])
+      indexed.push_back(static_cast<int>(p));
+  return indexed;
+}
+
 ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const std::vector<bool>& active,
                              const WarningSink& warn, const TableCache* cache, std::size_t max_entries)
 {
@@ -75,10 +84,7 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
     throw ParameterError("index_stride must be at least 1 table px, got " + std::to_string(stride));
   // Each prototype's entries into its own part, on OpenCV's threads, then
   // merged in prototype order: the index does not depend on the thread count.
-  std::vector<int> indexed;
-  for (std::size_t p = 0; p < memory.size(); ++p)
-    if (active.empty() || active[p])
-      indexed.push_back(static_cast<int>(p));
+  const std::vector<int> indexed = indexedPrototypes(memory.size(), active);
   std::vector<Part> parts(indexed.size());
   const auto indexAll = [&](int at_stride) {
     std::size_t total = 0;
