@@ -26,9 +26,10 @@ struct VParticleCluster
 /// of the V-particle's M-particles. The one test of "converged" everywhere.
 inline bool isConverged(const VParticleCluster& cluster, double min_share) { return cluster.share >= min_share; }
 
-/// Finds the densest cluster among M-particles [begin, end): the prototype
-/// holding most of them, then a mean shift of `radius` table px started at
-/// the most likely particle there.
+/// Finds the densest cluster among M-particles [begin, end): a mean shift of
+/// `radius` table px from the most likely particle of each prototype, most
+/// populated prototype first, keeping the mode with the most members (a tight
+/// cluster in one prototype wins over more particles spread over another).
 VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
                                  double radius);
 

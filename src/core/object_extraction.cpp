@@ -60,18 +60,42 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
   if (end <= begin || prototype_count <= 0)
     return cluster;
   std::vector<int> counts(prototype_count, 0);
+  std::vector<std::size_t> most_likely(prototype_count, end);
   for (std::size_t i = begin; i < end; ++i)
-    ++counts[m.prototype[i]];
-  const int k = static_cast<int>(std::max_element(counts.begin(), counts.end()) - counts.begin());
+  {
+    const int k = m.prototype[i];
+    ++counts[k];
+    if (most_likely[k] == end || m.log_likelihood[i] > m.log_likelihood[most_likely[k]])
+      most_likely[k] = i;
+  }
+  std::vector<int> order;
+  for (int k = 0; k < prototype_count; ++k)
+    if (counts[k] > 0)
+      order.push_back(k);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return counts[a] > counts[b] || (counts[a] == counts[b] && a < b); });
 
-  // Start at the most likely particle of the prototype, then mean-shift.
-  std::size_t start = end;
-  for (std::size_t i = begin; i < end; ++i)
-    if (m.prototype[i] == k && (start == end || m.log_likelihood[i] > m.log_likelihood[start]))
-      start = i;
+  // The densest mode: a mean shift from the most likely particle of each
+  // prototype, most populated first, until no prototype holds more particles
+  // than the densest mode found (a prototype that holds the most particles
+  // spread over the table loses to a tight cluster in another).
   const float r2 = static_cast<float>(radius * radius);
-  int members = 0;
-  const cv::Point2f centre = meanShift(m, begin, end, k, cv::Point2f(m.x[start], m.y[start]), r2, members);
+  int k = -1, members = 0;
+  cv::Point2f centre;
+  for (const int candidate : order)
+  {
+    if (counts[candidate] <= members)
+      break;
+    int candidate_members = 0;
+    const std::size_t start = most_likely[candidate];
+    const cv::Point2f candidate_centre =
+        meanShift(m, begin, end, candidate, cv::Point2f(m.x[start], m.y[start]), r2, candidate_members);
+    if (k < 0 || candidate_members > members)
+    {
+      k = candidate;
+      members = candidate_members;
+      centre = candidate_centre;
+    }
+  }
   double a[6] = {0, 0, 0, 0, 0, 0};
   int with_affine = 0;
   for (std::size_t i = begin; i < end; ++i)
