@@ -29,6 +29,15 @@ void place(amcr::MParticleSet& m, std::size_t begin, int count, int prototype, c
   }
 }
 
+/// Expects the cluster of `prototype` at `mean` holding `share` of the particles.
+void expectCluster(const amcr::VParticleCluster& c, int prototype, cv::Point2f mean, float share, float share_tolerance)
+{
+  EXPECT_EQ(c.prototype, prototype);
+  EXPECT_NEAR(c.mean.x, mean.x, kMeanTolerance);
+  EXPECT_NEAR(c.mean.y, mean.y, kMeanTolerance);
+  EXPECT_NEAR(c.share, share, share_tolerance);
+}
+
 TEST(DominantCluster, ATightClusterWinsOverMoreParticlesSpreadInAnotherPrototype)
 {
   amcr::Rng rng(7);
@@ -41,11 +50,7 @@ TEST(DominantCluster, ATightClusterWinsOverMoreParticlesSpreadInAnotherPrototype
   place(m, 75, 5, 2, {100, 20}, 10.f, -12.f, rng);
   place(m, 80, 20, 1, {64, 64}, 60.f, -12.f, rng);
 
-  const amcr::VParticleCluster c = amcr::dominantCluster(m, 0, 100, kPrototypes, kRadius);
-  EXPECT_EQ(c.prototype, 2);
-  EXPECT_NEAR(c.mean.x, 40.f, kMeanTolerance);
-  EXPECT_NEAR(c.mean.y, 90.f, kMeanTolerance);
-  EXPECT_NEAR(c.share, 0.30f, 0.011f);
+  expectCluster(amcr::dominantCluster(m, 0, 100, kPrototypes, kRadius), 2, {40, 90}, 0.30f, 0.011f);
 }
 
 TEST(DominantCluster, TheMostPopulatedPrototypeWinsWhenItHoldsTheDensestMode)
@@ -56,11 +61,7 @@ TEST(DominantCluster, TheMostPopulatedPrototypeWinsWhenItHoldsTheDensestMode)
   place(m, 0, 40, 1, {30, 30}, 2.f, -8.f, rng);
   place(m, 40, 20, 3, {90, 90}, 2.f, -9.f, rng);
 
-  const amcr::VParticleCluster c = amcr::dominantCluster(m, 0, 60, kPrototypes, kRadius);
-  EXPECT_EQ(c.prototype, 1);
-  EXPECT_NEAR(c.mean.x, 30.f, kMeanTolerance);
-  EXPECT_NEAR(c.mean.y, 30.f, kMeanTolerance);
-  EXPECT_NEAR(c.share, 40.f / 60.f, 1e-6f);
+  expectCluster(amcr::dominantCluster(m, 0, 60, kPrototypes, kRadius), 1, {30, 30}, 40.f / 60.f, 1e-6f);
 }
 
 TEST(DominantCluster, OnlyTheGivenRangeCounts)
