@@ -72,7 +72,7 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
   for (int k = 0; k < prototype_count; ++k)
     if (counts[k] > 0)
       order.push_back(k);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return counts[a] > counts[b] || (counts[a] == counts[b] && a < b); });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return counts[a] > counts[b]; });
 
   // The densest mode: a mean shift from the most likely particle of each
   // prototype, most populated first, until no prototype holds more particles
