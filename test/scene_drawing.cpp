@@ -437,8 +437,13 @@ cv::Mat drawRandomSilhouette(std::uint64_t seed)
     const double rr = r * (i % 2 == 0 ? 0.7 + 0.3 * u01(gen) : 0.3 + 0.3 * u01(gen));
     polygon.emplace_back(c.x + rr * std::cos(a), c.y + rr * std::sin(a));
   }
-  cv::Mat image(kPrototypeImageSize, kPrototypeImageSize, CV_8UC1, cv::Scalar(0));
-  fillPolygon(image, polygon, 255);
+  return drawSilhouette(polygon);
+}
+
+cv::Mat drawSilhouette(const std::vector<cv::Point2d>& polygon)
+{
+  cv::Mat image = cv::Mat::zeros(kPrototypeImageSize, kPrototypeImageSize, CV_8UC1);
+  fillPolygon(image, polygon, 255.0);
   return image;
 }
 }  // namespace amcr_test

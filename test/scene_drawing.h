@@ -70,6 +70,10 @@ std::vector<cv::Point2d> wavyOval(cv::Point2d centre, double a, double b, double
 /// edges unless `antialiased` is false (then only 0 and 255 occur).
 cv::Mat drawPrototype(ShapeId id, bool white_on_black = true, bool antialiased = true);
 
+/// A prototype image of `polygon` (prototype-image px): kPrototypeImageSize
+/// square, CV_8UC1, filled antialiased at 255 on 0.
+cv::Mat drawSilhouette(const std::vector<cv::Point2d>& polygon);
+
 /// Fills `polygon` (px of `image`, pixel-centre convention) with grey level
 /// `value` into a CV_8UC1 image. Antialiased by 4x4 supersampling (exact
 /// area coverage up to 1/16 px^2), or hard-edged.

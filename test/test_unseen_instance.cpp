@@ -40,13 +40,6 @@ std::vector<cv::Point2d> deformed(ShapeId shape, double t)
   return out;
 }
 
-cv::Mat silhouette(const std::vector<cv::Point2d>& polygon)
-{
-  cv::Mat image = cv::Mat::zeros(amcr_test::kPrototypeImageSize, amcr_test::kPrototypeImageSize, CV_8UC1);
-  amcr_test::fillPolygon(image, polygon, 255.0);
-  return image;
-}
-
 struct Case
 {
   ShapeId shape;
@@ -74,7 +67,7 @@ TEST_P(UnseenInstance, IsReportedWithItsNeighboursLabel)
       memory->add(name, amcr_test::drawPrototype(other), params);
     else  // only the two deformed neighbours: the shape itself is not in memory
       for (double t : {-1.0, 1.0})
-        memory->add(name, silhouette(deformed(other, t)), params, name + (t < 0 ? "/minus" : "/plus"));
+        memory->add(name, amcr_test::drawSilhouette(deformed(other, t)), params, name + (t < 0 ? "/minus" : "/plus"));
   }
 
   amcr_test::Scene scene;
