@@ -107,6 +107,16 @@ struct Params
   double motion_noise_translation = 1.5; ///< M-particle translation noise, prototype px [0, 100]
   double motion_noise_rotation = 0.08;   ///< M-particle rotation noise, rad [0, 3.15]
   double reflection_jitter = 0.3;        ///< random turn added at a reflection, rad [0, 3.15]
+  /// Attention that discriminates (discriminative_attention.h): a V-particle
+  /// whose M-particles have found a shape while another prototype's cluster
+  /// competes moves where their predicted scans differ most.
+  bool discriminative_moves = false;
+  double discriminative_min_share = 0.05;  ///< share of a V's M-particles a competing cluster needs [0, 1]
+  double discriminative_min_gain = 0.2;    ///< least expected log-likelihood ratio of a discriminative move, nats [0, 100]
+  /// Competing clusters of V-particles whose prototypes are fitted and
+  /// verified on the image per frame beside the groups' (object_extractor.cpp)
+  /// [0, 64]; 0 = none.
+  int competing_fits = 4;
 
   // Resampling (paper 3.6).
   int v_resample_interval = 3;      ///< w: V-particles are resampled every w iterations [1, 1000]; paper 10

@@ -23,6 +23,7 @@
 #include <opencv2/core.hpp>
 
 #include "amcr/affine.h"
+#include "amcr/discriminative_attention.h"
 #include "amcr/exploration_policy.h"
 #include "amcr/motion_model.h"
 #include "amcr/observation_model.h"
@@ -97,7 +98,9 @@ public:
   /// scanner's image; forgets the leading hypotheses.
   void seed(const RadialScanner& scanner);
 
-  /// One V-particle's iteration (paper 3.6): its control from the policy, the
+  /// One V-particle's iteration (paper 3.6): its control (from the
+  /// discriminative attention when its M-particles hold competing clusters
+  /// and params.discriminative_moves is on, else from the policy), the
   /// motion of it and its M-particles, its measurement and the update of its
   /// M-particles (eqs. 5-6), its evidence, and the M-resampling.
   void update(int v_index, const RadialScanner& scanner);
@@ -255,6 +258,7 @@ private:
   std::shared_ptr<const PrototypeMemory> memory_;
   PrototypePrior prior_;
   std::unique_ptr<ExplorationPolicy> policy_;
+  DiscriminativeMoveChooser discriminator_;  // used when params_.discriminative_moves
   ObservationModel observation_;
   MotionModel motion_;
   Rng rng_;                       // the V-resampling's draw

@@ -36,6 +36,32 @@ RaySignature raySignature(const RayHit hits[kFeatureRays]);
 /// the M-particle's heading directly (the table direction of u_0).
 RaySignature unsquashedFeatureRays(const RadialScanner& scanner, float x, float y, float theta, const float shape[3]);
 
+/// One interpretation a V-particle's M-particles hold: the most likely
+/// M-particle of a cluster, and the share of the V-particle's M-particles in
+/// the cluster.
+struct CompetingHypothesis
+{
+  int prototype = -1;
+  float x = 0.f;  ///< table px of the M-particle
+  float y = 0.f;
+  /// Where its V-particle was when the hypothesis was taken, input px: the
+  /// image point that (x, y) corresponds to.
+  float image_x = 0.f;
+  float image_y = 0.f;
+  /// Linear part of its affine A (image -> table), row-major 2x2.
+  float linear[4] = {1.f, 0.f, 0.f, 1.f};
+  float share = 0.f;  ///< of the V-particle's M-particles, within the cluster radius
+};
+
+/// The clusters a V-particle is deciding between (at most kMaxCompeting;
+/// discriminative_attention.h).
+struct CompetingHypotheses
+{
+  static constexpr int kMaxCompeting = 3;
+  int count = 0;
+  CompetingHypothesis hypothesis[kMaxCompeting];
+};
+
 /// A V-particle: a pose in the input image plus its evidence record.
 struct VParticle
 {
@@ -48,6 +74,12 @@ struct VParticle
   int evidence_count = 0;
   int age = 0;  ///< iterations since this V-particle was seeded
   RaySignature rays;  ///< the last measurement
+  /// The clusters its M-particles held before its last move, when two or
+  /// more compete (count 0 otherwise).
+  CompetingHypotheses competing;
+  /// Whether its last move was chosen to decide between them (else the
+  /// exploration policy chose it).
+  bool discriminating = false;
 };
 
 /// Where the optical flow takes one V-particle into the current frame.

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "amcr/differing_parts.h"
+#include "amcr/discriminative_attention.h"
+#include "amcr/outline_edges.h"
 #include "amcr/outline_fit.h"
 #include "amcr/parallel_for.h"
 #include "amcr/perspective_choice.h"
@@ -26,6 +29,12 @@ constexpr double kVerificationGain = 4.0;          // log-weight per unit of out
 constexpr double kSameObjectOverlap = 0.3;
 constexpr double kLeadingScoreRatio = 0.5;         // a leading hypothesis scores at least this share of the threshold
 constexpr std::size_t kMaxPerspectiveFits = 3;     // best candidates per frame that may get a homography
+// Look-alikes (adoptSupport): outline points farther apart than this many
+// score tolerances differ; a differing part of fewer points does not count;
+// the edge support of one's differing part must beat the other's by the margin.
+constexpr double kDifferingApart = 2.0;
+constexpr int kMinDifferingPoints = 6;
+constexpr double kDifferingPartsMargin = 0.25;
 
 /// An object verified on the image, with the V-particles that support it.
 struct Candidate
@@ -34,6 +43,7 @@ struct Candidate
   std::vector<int> v_particles;  // V indices, one per correspondence
   Affine table_to_image;         // the fitted affine, table px -> input px
   double score_tolerance = 0.0;  // px: the score's tolerance at the object's size
+  bool competing = false;        // fitted from a competing cluster: not a leading hypothesis
 };
 
 /// Where the fit of one prototype starts: a group's affine and the affines
@@ -42,6 +52,7 @@ struct FitStart
 {
   int prototype;
   std::vector<Affine> affines;
+  bool competing = false;  ///< a V-particle's competing cluster (addCompetingStarts)
 };
 
 /// What every step of the extraction reads.
@@ -127,7 +138,70 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
                                                in.params.refine_search, rule);
   Candidate perspective;
   if (fit.used && describeObject(in, prototype, candidate.table_to_image, perspective, &fit))
+  {
+    perspective.competing = candidate.competing;
     candidate = std::move(perspective);
+  }
+}
+
+/// Whether a start of `prototype` begins near `centre` (image px).
+bool startedNear(const ExtractionInput& in, const std::vector<FitStart>& starts, int prototype,
+                 const cv::Point2d& centre)
+{
+  const cv::Point2d table_centre = in.memory[prototype].centre();
+  for (const FitStart& start : starts)
+  {
+    if (start.prototype != prototype)
+      continue;
+    for (const Affine& affine : start.affines)
+    {
+      const cv::Point2d c = applyAffine(affine, table_centre);
+      if (std::hypot(c.x - centre.x, c.y - centre.y) <= kTrackDistance)
+        return true;
+    }
+  }
+  return false;
+}
+
+// The other interpretations V-particles are still deciding between
+// (discriminative_attention.h): each gets a fit of its own where no start
+// of its prototype is near, the largest clusters first, so that of alike
+// shapes at one place the image's outline decides (report() keeps the better
+// of overlapping objects, and a better one leads the injection).
+void addCompetingStarts(const ExtractionInput& in, std::vector<FitStart>& starts)
+{
+  if (in.params.competing_fits <= 0)
+    return;
+  struct Alternative
+  {
+    float share;
+    FitStart start;
+  };
+  std::vector<Alternative> alternatives;
+  // A look-alike of the V-particle's most likely interpretation: another
+  // prototype (another place of the same one is no alternative at this place).
+  for (const VParticle& v : in.filter.vParticles())
+    for (int k = 1; k < v.competing.count; ++k)
+    {
+      const CompetingHypothesis& h = v.competing.hypothesis[k];
+      Affine table_to_image;
+      if (h.prototype == v.competing.hypothesis[0].prototype || !hypothesisTableToImage(h, table_to_image))
+        continue;
+      alternatives.push_back({h.share, {h.prototype, {table_to_image}, true}});
+    }
+  std::stable_sort(alternatives.begin(), alternatives.end(),
+                   [](const Alternative& a, const Alternative& b) { return a.share > b.share; });
+  int added = 0;
+  for (Alternative& a : alternatives)
+  {
+    if (added >= in.params.competing_fits)
+      break;
+    const cv::Point2d centre = applyAffine(a.start.affines[0], in.memory[a.start.prototype].centre());
+    if (startedNear(in, starts, a.start.prototype, centre))
+      continue;
+    starts.push_back(std::move(a.start));
+    ++added;
+  }
 }
 
 // Starting points of the fit: each group's affine, and each object of the
@@ -189,6 +263,7 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   for (std::size_t k = 0; k < tracks.size(); ++k)
     if (!track_used[k])
       starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}});
+  addCompetingStarts(in, starts);
   return starts;
 }
 
@@ -211,6 +286,7 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
       if (describeObject(in, start.prototype, refined, candidate) &&
           (!found[s] || candidate.object.score > fitted[s].object.score))
       {
+        candidate.competing = start.competing;
         fitted[s] = std::move(candidate);
         found[s] = 1;
       }
@@ -277,6 +353,62 @@ std::vector<LeadingHypothesis> leadingHypotheses(const ExtractionInput& in, cons
   return leading;
 }
 
+/// Whether `better`, which verifies at least as well as `supported` on the
+/// whole outline, also does on the parts where the two outlines differ
+/// (differing_parts.h): its own differing part verifies as an object must
+/// (decision_threshold) and by kDifferingPartsMargin better than the other's.
+bool winsOnDifferingParts(const ExtractionInput& in, const Candidate& better, const Candidate& supported)
+{
+  const double tolerance = std::max(better.score_tolerance, supported.score_tolerance);
+  const DifferingParts parts = compareDifferingParts(
+      in.scanner, mapOutline(in.memory[better.object.prototype_id], better.table_to_image),
+      mapOutline(in.memory[supported.object.prototype_id], supported.table_to_image), tolerance,
+      kDifferingApart * tolerance);
+  // Its own differing part must be there on the image, as a whole outline
+  // must be to be reported; the other's, where too small to count, is neutral.
+  if (parts.a_points < kMinDifferingPoints || parts.a_support < in.params.decision_threshold)
+    return false;
+  const double supported_part = parts.b_points >= kMinDifferingPoints ? parts.b_support : 0.5;
+  return parts.a_support - supported_part > kDifferingPartsMargin;
+}
+
+// Of alike shapes at one place the image decides where they differ, not the
+// count of V-particles: the M-particles of the V-particles on an object can
+// settle in a look-alike prototype (a bird in another pose, or without its
+// crest) while a competing cluster's fit (addCompetingStarts) verifies
+// better. A candidate that overlaps a better supported one of another
+// prototype, verifies at least as well on the whole outline and clearly
+// better on the parts where the two differ, takes over its V-particles as
+// support, each with the correspondence its own transform gives; report()
+// then suppresses the other.
+void adoptSupport(const ExtractionInput& in, std::vector<Candidate>& candidates)
+{
+  const std::vector<VParticle>& v = in.filter.vParticles();
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+  {
+    Candidate& better = candidates[i];
+    for (std::size_t j = i + 1; j < candidates.size(); ++j)  // best score first: j scores no more than i
+    {
+      const Candidate& supported = candidates[j];
+      if (supported.object.prototype_id == better.object.prototype_id ||
+          supported.object.support <= better.object.support ||
+          better.object.score < in.params.decision_threshold ||
+          outlineOverlap(better.object.outline, supported.object.outline) <= kSameObjectOverlap ||
+          !winsOnDifferingParts(in, better, supported))
+        continue;
+      RecognizedObject& object = better.object;
+      object.correspondences.clear();
+      better.v_particles = supported.v_particles;
+      for (int k : better.v_particles)
+      {
+        const cv::Point2d image_point(v[k].x, v[k].y);
+        object.correspondences.push_back({image_point, applyAffine(object.image_to_prototype, image_point)});
+      }
+      object.support = static_cast<int>(object.correspondences.size());
+    }
+  }
+}
+
 /// Reports what passes the decision threshold; of two overlapping objects
 /// the better one; a new object only while the registry has room (max_objects).
 void report(const Params& params, const TrackRegistry& registry, std::vector<Candidate>& candidates,
@@ -327,6 +459,8 @@ Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& sca
   params.min_object_size = min_object_size;
   const ExtractionInput in{filter, scanner, extraction.clusters, params, filter.memory()};
   std::vector<Candidate> candidates = fitCandidates(in, fitStarts(in, tracks));
+  if (in.params.competing_fits > 0)
+    adoptSupport(in, candidates);
   extraction.feedback.evidence = verificationEvidence(in, candidates);
   extraction.feedback.leading = leadingHypotheses(in, candidates);
   for (const Candidate& candidate : candidates)

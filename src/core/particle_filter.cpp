@@ -51,6 +51,7 @@ ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const Proto
   , memory_(checkedMemory(std::move(memory)))
   , prior_(checkedPrior(*memory_, params_))
   , policy_(std::make_unique<ReflectAtEdgesPolicy>(params.v_step, params.reflection_jitter))
+  , discriminator_(params.v_step, params.discriminative_min_gain)
   , observation_(params)
   , motion_(params)
   , rng_(params.seed)
@@ -495,10 +496,31 @@ void ParticleFilter::update(int v_index, const RadialScanner& scanner)
   VParticle& v = v_[v_index];
   const MRange r = mRange(v_index);
 
-  // Control from the policy; the M-particles follow through their A (paper 4.2).
+  // Control: to where competing clusters disagree (paper 4.3's feedback
+  // control, discriminative_attention.h), else from the policy; the
+  // M-particles follow through their A (paper 4.2).
   Rng& rng = work_[v_index].rng;
   const double heading_before = v.theta;
-  const Control u = policy_->decide(v, scanner, rng);
+  Control u;
+  v.competing = CompetingHypotheses();
+  v.discriminating = false;
+  if (params_.discriminative_moves || params_.competing_fits > 0)
+  {
+    const CompetingHypotheses competing =
+        competingHypotheses(m_, r, v.x, v.y, static_cast<float>(params_.cluster_radius),
+                            static_cast<float>(params_.discriminative_min_share));
+    if (decidingBetweenLookAlikes(competing, static_cast<float>(params_.cluster_min_share)))
+      v.competing = competing;
+    DiscriminativeMove move;
+    if (params_.discriminative_moves && v.competing.count >= 2 &&
+        discriminator_.choose(v, v.competing, *memory_, observation_, image_size_, move))
+    {
+      u = move.control;
+      v.discriminating = true;
+    }
+  }
+  if (!v.discriminating)
+    u = policy_->decide(v, scanner, rng);
   MotionModel::moveV(v, u);
   v.theta = static_cast<float>(wrapAngle(v.theta));
   motion_.moveM(m_, r.begin, r.end, heading_before, u, rng);

@@ -1,0 +1,134 @@
+// Attention that discriminates, end to end (the paper's figure 5 problem):
+// two drawn birds identical but for a crest on the head. With the competing
+// fits (the default) the crested bird shown is decided in fewer frames than
+// without them, and with discriminative moves on as well the V-particles
+// deciding between the two go to the head.
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "amcr/recognizer.h"
+#include "scene_drawing.h"
+
+namespace
+{
+constexpr int kFrames = 40;
+const std::vector<std::uint64_t> kSeeds = {1, 2, 3, 4, 5, 6};
+
+// Prototype-image px. The crest is inserted between the two head points.
+const std::vector<cv::Point2d> kBird = {{15, 80},  {70, 100}, {90, 140}, {130, 150}, {155, 125}, {160, 100}, {185, 95},
+                                        {170, 80}, {160, 62}, {140, 62}, {130, 80},  {100, 90},  {60, 88}};
+const cv::Point2d kCrestTip(150, 22);
+
+std::vector<cv::Point2d> crested()
+{
+  std::vector<cv::Point2d> polygon = kBird;
+  const auto at = polygon.begin() + 9;  // between (160, 62) and (140, 62)
+  polygon.insert(at, {{156, 40}, kCrestTip, {145, 42}});
+  return polygon;
+}
+
+struct BirdRun
+{
+  int held_from = -1;         ///< first frame from which "crested" is reported in every frame; -1: never
+  int head_visit = -1;        ///< first frame with a discriminating V-particle near the crest; -1: never
+  int wrong_frames = 0;       ///< frames reporting the plain bird where the crested one is
+};
+
+/// The crested bird shown over clutter drawn from `seed`, recognized with
+/// discriminative moves on or off and `competing_fits` competing fits per frame.
+BirdRun run(bool moves, int competing_fits, std::uint64_t seed)
+{
+  amcr::Params params;
+  params.seed = seed;
+  params.table_cache_dir = "none";
+  params.discriminative_moves = moves;
+  params.competing_fits = competing_fits;
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  memory->add("bird", amcr_test::drawSilhouette(kBird), params);
+  memory->add("crested", amcr_test::drawSilhouette(crested()), params);
+
+  amcr_test::Scene scene;
+  const amcr::Affine truth = amcr_test::makeAffine(amcr_test::prototypeCentre(), {320, 240}, 0.4, 1.1, 1.0, 0.05);
+  scene.objects.push_back({amcr_test::ShapeId::kArrow, truth});  // where the crested bird is drawn
+  scene.clutter.seed = 100 + seed;
+  const cv::Mat background = amcr_test::renderBackground(scene);  // distractors keep away from the placement
+  const std::vector<cv::Point2d> outline = amcr_test::transformPoints(truth, crested());
+  const cv::Point2d crest = amcr::applyAffine(truth, kCrestTip);
+  const cv::Point2d head = amcr::applyAffine(truth, {150, 62});
+  const double head_radius = 0.5 * std::hypot(crest.x - head.x, crest.y - head.y) + 15.0;
+  const cv::Point2d head_centre = 0.5 * (crest + head);
+
+  amcr::Recognizer recognizer(params, memory);
+  BirdRun r;
+  for (int k = 0; k < kFrames; ++k)
+  {
+    cv::Mat clean = background.clone();
+    amcr_test::fillPolygon(clean, outline, 35.0);
+    const cv::Mat frame = amcr_test::addNoise(clean, scene.clutter.noise_sigma, scene.clutter.seed * 1000 + k);
+    bool right = false;
+    for (const amcr::RecognizedObject& o : recognizer.step(frame).objects)
+    {
+      right = right || o.label == "crested";
+      r.wrong_frames += o.label == "bird" ? 1 : 0;
+    }
+    if (!right)
+      r.held_from = -1;
+    else if (r.held_from < 0)
+      r.held_from = k + 1;
+    if (r.head_visit < 0)
+      for (const amcr::VParticleView& v : recognizer.view().v)
+        if (v.discriminating &&
+            std::hypot(v.position.x - head_centre.x, v.position.y - head_centre.y) <= head_radius)
+          r.head_visit = k + 1;
+  }
+  return r;
+}
+
+// Measured (6 seeds, frames from which "crested" is held): with the
+// competing fits (the default) 6, 4, 4, 4, 5, 4 (27 in all); without
+// 6, 4, 4, 5, 37, 4 (60: with seed 5 the plain bird is held for 32 frames);
+// with discriminative moves as well 6, 7, 4, 4, 5, 4 (30), a discriminating
+// V-particle near the head by frames 6, 8, 5, 12 and 23 (with seed 2 the
+// crest is decided at frame 7, before any goes there).
+TEST(DiscriminatingBirds, TheCrestDecidesSoonerWithDiscriminativeAttention)
+{
+  constexpr int kHeldWithin = 20;    // frames: the aim for the paper's three birds
+  constexpr int kVisitWithin = 25;   // frames
+  constexpr int kSeedsVisiting = 4;  // of the 6
+  const int fits = amcr::Params().competing_fits;
+  ASSERT_GT(fits, 0) << "the competing fits are on by default";
+  int with_total = 0, without_total = 0, moves_total = 0, visiting = 0, with_wrong = 0, without_wrong = 0;
+  for (std::uint64_t seed : kSeeds)
+  {
+    const BirdRun with = run(false, fits, seed), without = run(false, 0, seed), moves = run(true, fits, seed);
+    std::cout << "[ birds    ] seed " << seed << ": held from frame " << with.held_from << " with the competing fits, "
+              << without.held_from << " without, " << moves.held_from
+              << " with discriminative moves as well (the head visited at " << moves.head_visit
+              << "); the plain bird reported in " << with.wrong_frames << " / " << without.wrong_frames << " / "
+              << moves.wrong_frames << " frames\n";
+    EXPECT_GT(with.held_from, 0) << "seed " << seed << ": the crested bird is not held to the end";
+    EXPECT_LE(with.held_from, kHeldWithin) << "seed " << seed;
+    EXPECT_GT(moves.held_from, 0) << "seed " << seed << ", with discriminative moves";
+    EXPECT_LE(moves.held_from, kHeldWithin) << "seed " << seed << ", with discriminative moves";
+    const auto frames = [](const BirdRun& r) { return r.held_from < 0 ? kFrames + 1 : r.held_from; };
+    with_total += frames(with);
+    without_total += frames(without);
+    moves_total += frames(moves);
+    visiting += (moves.head_visit > 0 && moves.head_visit <= kVisitWithin) ? 1 : 0;
+    with_wrong += with.wrong_frames;
+    without_wrong += without.wrong_frames;
+  }
+  std::cout << "[ birds    ] total frames to a held decision: " << with_total << " with the competing fits, "
+            << without_total << " without, " << moves_total << " with discriminative moves as well\n";
+  // A third fewer frames in all (measured: over half).
+  EXPECT_LE(3 * with_total, 2 * without_total);
+  EXPECT_LE(3 * moves_total, 2 * without_total);
+  EXPECT_LE(with_wrong, without_wrong);
+  EXPECT_GE(visiting, kSeedsVisiting) << "discriminating V-particles should go to the head";
+}
+}  // namespace
