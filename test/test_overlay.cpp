@@ -148,6 +148,48 @@ TEST(DrawOverlay, DrawsRecognizedObjectsEvenWithOddValues)
   EXPECT_NE(on_outline, bgr.at<cv::Vec3b>(70, 105));
 }
 
+// A discriminating V-particle gets a white ring, and the outline of each
+// interpretation it decides between is drawn in its prototype's colour
+// where that interpretation puts it; a V-particle that explores gets neither.
+TEST(DrawOverlay, ShowsTheClustersADiscriminatingVParticleDecidesBetween)
+{
+  const amcr::Params params = smallParams();
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  memory->add("disc", silhouette(0), params);
+  memory->add("bar", silhouette(1), params);
+  const cv::Mat grey(150, 201, CV_8UC1, cv::Scalar(128));
+  amcr::FilterView view;
+  amcr::VParticleView v;
+  v.position = cv::Point2f(100, 75);
+  v.discriminating = true;
+  // The disc's table centred on (60, 75), the bar's on (140, 75), both 1:1.
+  const cv::Point2d disc_centre = (*memory)[0].centre(), bar_centre = (*memory)[1].centre();
+  v.competing.push_back({0, cv::Matx23d(1, 0, 60 - disc_centre.x, 0, 1, 75 - disc_centre.y), 0.5f});
+  v.competing.push_back({1, cv::Matx23d(1, 0, 140 - bar_centre.x, 0, 1, 75 - bar_centre.y), 0.3f});
+  view.v.push_back(v);
+  amcr::OverlayOptions options;
+  options.draw_status = false;
+  const cv::Mat overlay = amcr::drawOverlay(grey, *memory, view, amcr::RecognitionResult(), options);
+  const cv::Rect image_area = amcr::overlayLayout(grey.size(), memory->size(), options).image;
+  const cv::Mat drawn = overlay(image_area);
+  const auto countColour = [&](const cv::Scalar& colour, const cv::Rect& where) {
+    cv::Mat mask;
+    cv::inRange(drawn(where), colour - cv::Scalar(40, 40, 40), colour + cv::Scalar(40, 40, 40), mask);
+    return cv::countNonZero(mask);
+  };
+  EXPECT_GT(countColour(amcr::prototypeColour(0), cv::Rect(20, 30, 80, 90)), 20) << "the disc's outline about (60, 75)";
+  EXPECT_GT(countColour(amcr::prototypeColour(1), cv::Rect(100, 50, 90, 50)), 20) << "the bar's outline about (140, 75)";
+  EXPECT_GT(countColour(cv::Scalar(255, 255, 255), cv::Rect(92, 67, 17, 17)), 4) << "the white ring";
+
+  view.v[0].discriminating = false;
+  const cv::Mat exploring = amcr::drawOverlay(grey, *memory, view, amcr::RecognitionResult(), options);
+  const cv::Mat drawn_exploring = exploring(image_area);
+  cv::Mat mask;
+  cv::inRange(drawn_exploring(cv::Rect(100, 50, 90, 50)), amcr::prototypeColour(1) - cv::Scalar(40, 40, 40),
+              amcr::prototypeColour(1) + cv::Scalar(40, 40, 40), mask);
+  EXPECT_EQ(cv::countNonZero(mask), 0) << "an exploring V-particle draws no competing outline";
+}
+
 // The label shows the viewing angle and the anisotropy (issue 13), and says when the homography is used.
 TEST(DrawOverlay, LabelShowsTheViewingAngleAndAnisotropy)
 {

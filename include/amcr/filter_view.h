@@ -17,6 +17,14 @@ struct FlowTrail
   cv::Point2f from;    ///< input px in the previous frame
 };
 
+/// One of the clusters a V-particle is deciding between (discriminative_attention.h).
+struct CompetingView
+{
+  int prototype = -1;
+  cv::Matx23d table_to_input;  ///< its affine, prototype table px -> input px
+  float share = 0.f;           ///< of the V-particle's M-particles
+};
+
 struct VParticleView
 {
   cv::Point2f position;  ///< input px
@@ -25,6 +33,11 @@ struct VParticleView
   /// (isConverged, as the result extraction decides), else -1.
   int dominant_prototype = -1;
   FlowTrail trail;
+  /// Whether its last move was chosen to decide between `competing` (else
+  /// the exploration policy chose it); `competing` is empty when fewer than
+  /// two clusters compete.
+  bool discriminating = false;
+  std::vector<CompetingView> competing;
 };
 
 /// An M-particle as drawn in its prototype's panel.

@@ -253,11 +253,37 @@ void drawObject(cv::Mat& canvas, cv::Mat& image, const std::vector<PanelMap>& pa
     drawText(image, lines[i], anchor + cv::Point(0, kLineHeight * static_cast<int>(i)), colour);
 }
 
+/// A V-particle deciding between clusters (discriminative_attention.h): the
+/// outline of each competing interpretation, in its prototype's colour,
+/// thin and dashed by sampling every other segment.
+void drawCompeting(cv::Mat& image, const PrototypeMemory& memory, const VParticleView& particle)
+{
+  for (const CompetingView& c : particle.competing)
+  {
+    if (c.prototype < 0 || c.prototype >= static_cast<int>(memory.size()))
+      continue;
+    const std::vector<OutlinePoint>& outline = memory[c.prototype].outline();
+    for (std::size_t i = 0; i + 1 < outline.size(); i += 2)
+    {
+      const cv::Point2d a = applyAffine(c.table_to_input, cv::Point2d(outline[i].position));
+      const cv::Point2d b = applyAffine(c.table_to_input, cv::Point2d(outline[i + 1].position));
+      if (finite(a) && finite(b))
+        cv::line(image, toPixel(a), toPixel(b), prototypeColour(c.prototype), 1, cv::LINE_AA);
+    }
+  }
+}
+
 /// V-particles on top: circle in the dominant prototype's colour, heading
 /// tick in the V-particle's own colour, and a white trail from where the
-/// optical flow took it in this frame.
-void drawVParticles(cv::Mat& image, const FilterView& view, const OverlayOptions& options)
+/// optical flow took it in this frame. A V-particle whose move was chosen
+/// to decide between clusters has a white ring, and (draw_competing) the
+/// outlines of the interpretations it decides between.
+void drawVParticles(cv::Mat& image, const PrototypeMemory& memory, const FilterView& view,
+                    const OverlayOptions& options)
 {
+  for (std::size_t v = 0; options.draw_v_particles && options.draw_competing && v < view.v.size(); ++v)
+    if (view.v[v].discriminating)
+      drawCompeting(image, memory, view.v[v]);
   for (std::size_t v = 0; options.draw_v_particles && v < view.v.size(); ++v)
   {
     const VParticleView& particle = view.v[v];
@@ -272,6 +298,8 @@ void drawVParticles(cv::Mat& image, const FilterView& view, const OverlayOptions
                           p.y + options.heading_length * std::sin(particle.theta));
     cv::line(image, toPixel(p), toPixel(tip), vParticleColour(static_cast<int>(v)), 2, cv::LINE_AA);
     cv::circle(image, toPixel(p), options.v_radius, circle_colour, 2, cv::LINE_AA);
+    if (particle.discriminating)
+      cv::circle(image, toPixel(p), options.v_radius + 2, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
   }
 }
 
@@ -313,7 +341,7 @@ cv::Mat drawOverlay(const cv::Mat& input, const PrototypeMemory& memory, const F
   cv::Mat image = canvas(layout.image);
   for (const RecognizedObject& object : result.objects)
     drawObject(canvas, image, panels, memory, object, options);
-  drawVParticles(image, view, options);
+  drawVParticles(image, memory, view, options);
   if (options.draw_status)
     drawStatus(image, view, result);
   return canvas;

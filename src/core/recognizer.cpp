@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "amcr/discriminative_attention.h"
 #include "amcr/object_extractor.h"
 #include "amcr/parallel_for.h"
 #include "amcr/radial_scan.h"
@@ -213,6 +214,14 @@ FilterView Recognizer::view() const
     {
       particle.trail = trails_[i];
       particle.trail.from = input(particle.trail.from);
+    }
+    particle.discriminating = v[i].discriminating;
+    for (int k = 0; k < v[i].competing.count; ++k)
+    {
+      const CompetingHypothesis& h = v[i].competing.hypothesis[k];
+      Affine table_to_image;
+      if (hypothesisTableToImage(h, table_to_image))
+        particle.competing.push_back({h.prototype, composeAffine(table_to_image, to_input), h.share});
     }
     view.v.push_back(particle);
   }
