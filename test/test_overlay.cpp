@@ -148,9 +148,10 @@ TEST(DrawOverlay, DrawsRecognizedObjectsEvenWithOddValues)
   EXPECT_NE(on_outline, bgr.at<cv::Vec3b>(70, 105));
 }
 
-// A discriminating V-particle gets a white ring, and the outline of each
-// interpretation it decides between is drawn in its prototype's colour
-// where that interpretation puts it; a V-particle that explores gets neither.
+// A V-particle deciding between look-alike clusters: the outline of each
+// interpretation is drawn in its prototype's colour where that
+// interpretation puts it, with a white ring when its move was chosen to
+// decide; a V-particle with no competing clusters draws neither.
 TEST(DrawOverlay, ShowsTheClustersADiscriminatingVParticleDecidesBetween)
 {
   const amcr::Params params = smallParams();
@@ -158,7 +159,6 @@ TEST(DrawOverlay, ShowsTheClustersADiscriminatingVParticleDecidesBetween)
   memory->add("disc", silhouette(0), params);
   memory->add("bar", silhouette(1), params);
   const cv::Mat grey(150, 201, CV_8UC1, cv::Scalar(128));
-  amcr::FilterView view;
   amcr::VParticleView v;
   v.position = cv::Point2f(100, 75);
   v.discriminating = true;
@@ -166,28 +166,33 @@ TEST(DrawOverlay, ShowsTheClustersADiscriminatingVParticleDecidesBetween)
   const cv::Point2d disc_centre = (*memory)[0].centre(), bar_centre = (*memory)[1].centre();
   v.competing.push_back({0, cv::Matx23d(1, 0, 60 - disc_centre.x, 0, 1, 75 - disc_centre.y), 0.5f});
   v.competing.push_back({1, cv::Matx23d(1, 0, 140 - bar_centre.x, 0, 1, 75 - bar_centre.y), 0.3f});
-  view.v.push_back(v);
   amcr::OverlayOptions options;
   options.draw_status = false;
-  const cv::Mat overlay = amcr::drawOverlay(grey, *memory, view, amcr::RecognitionResult(), options);
   const cv::Rect image_area = amcr::overlayLayout(grey.size(), memory->size(), options).image;
-  const cv::Mat drawn = overlay(image_area);
-  const auto countColour = [&](const cv::Scalar& colour, const cv::Rect& where) {
+  const auto drawnWith = [&](const amcr::VParticleView& particle) {
+    amcr::FilterView one;
+    one.v.push_back(particle);
+    return amcr::drawOverlay(grey, *memory, one, amcr::RecognitionResult(), options)(image_area).clone();
+  };
+  const auto countIn = [](const cv::Mat& picture, const cv::Scalar& colour, const cv::Rect& where) {
     cv::Mat mask;
-    cv::inRange(drawn(where), colour - cv::Scalar(40, 40, 40), colour + cv::Scalar(40, 40, 40), mask);
+    cv::inRange(picture(where), colour - cv::Scalar(40, 40, 40), colour + cv::Scalar(40, 40, 40), mask);
     return cv::countNonZero(mask);
   };
-  EXPECT_GT(countColour(amcr::prototypeColour(0), cv::Rect(20, 30, 80, 90)), 20) << "the disc's outline about (60, 75)";
-  EXPECT_GT(countColour(amcr::prototypeColour(1), cv::Rect(100, 50, 90, 50)), 20) << "the bar's outline about (140, 75)";
-  EXPECT_GT(countColour(cv::Scalar(255, 255, 255), cv::Rect(92, 67, 17, 17)), 4) << "the white ring";
+  const cv::Mat drawn = drawnWith(v);
+  EXPECT_GT(countIn(drawn, amcr::prototypeColour(0), cv::Rect(20, 30, 80, 90)), 20) << "the disc's outline about (60, 75)";
+  EXPECT_GT(countIn(drawn, amcr::prototypeColour(1), cv::Rect(100, 50, 90, 50)), 20) << "the bar's outline about (140, 75)";
+  EXPECT_GT(countIn(drawn, cv::Scalar(255, 255, 255), cv::Rect(92, 67, 17, 17)), 4) << "the white ring";
 
-  view.v[0].discriminating = false;
-  const cv::Mat exploring = amcr::drawOverlay(grey, *memory, view, amcr::RecognitionResult(), options);
-  const cv::Mat drawn_exploring = exploring(image_area);
-  cv::Mat mask;
-  cv::inRange(drawn_exploring(cv::Rect(100, 50, 90, 50)), amcr::prototypeColour(1) - cv::Scalar(40, 40, 40),
-              amcr::prototypeColour(1) + cv::Scalar(40, 40, 40), mask);
-  EXPECT_EQ(cv::countNonZero(mask), 0) << "an exploring V-particle draws no competing outline";
+  amcr::VParticleView undecided = v;  // deciding, but its move came from the exploration policy
+  undecided.discriminating = false;
+  const cv::Mat no_ring = drawnWith(undecided);
+  EXPECT_GT(countIn(no_ring, amcr::prototypeColour(1), cv::Rect(100, 50, 90, 50)), 20);
+  EXPECT_EQ(countIn(no_ring, cv::Scalar(255, 255, 255), cv::Rect(92, 67, 17, 17)), 0);
+  amcr::VParticleView exploring = undecided;
+  exploring.competing.clear();
+  EXPECT_EQ(countIn(drawnWith(exploring), amcr::prototypeColour(1), cv::Rect(100, 50, 90, 50)), 0)
+      << "a V-particle with no competing clusters draws no outline";
 }
 
 // The label shows the viewing angle and the anisotropy (issue 13), and says when the homography is used.

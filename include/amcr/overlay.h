@@ -33,7 +33,7 @@ struct OverlayOptions
   bool draw_v_particles = true;
   bool draw_m_particles = true;
   bool draw_correspondences = true;
-  /// The outlines of the clusters each discriminating V-particle decides between.
+  /// The outlines of the look-alike clusters each V-particle decides between.
   bool draw_competing = true;
   bool draw_status = true;     ///< iteration, time and counts in the top-left corner
 };
@@ -69,10 +69,11 @@ OverlayLayout overlayLayout(const cv::Size& input_size, std::size_t num_prototyp
 /// decides; the same colour frames that prototype's panel), or grey when its
 /// M-particles have not converged; its heading tick has the V-particle's own
 /// colour, which its M-particle dots share in the panels. A white line
-/// shows where the optical flow of the step took a V-particle from. A white
-/// ring marks a V-particle whose move was chosen to decide between clusters
-/// (discriminative_attention.h); thin outlines in their prototypes' colours
-/// show the interpretations it decides between.
+/// shows where the optical flow of the step took a V-particle from. Thin
+/// dashed outlines in their prototypes' colours show the look-alike
+/// clusters a V-particle is deciding between (discriminative_attention.h),
+/// and a white ring marks it when its move was chosen to decide them
+/// (discriminative_moves).
 /// Recognized objects and their correspondence lines have one colour per track.
 cv::Mat drawOverlay(const cv::Mat& input, const PrototypeMemory& memory, const FilterView& view,
                     const RecognitionResult& result, const OverlayOptions& options = OverlayOptions());

@@ -253,9 +253,9 @@ void drawObject(cv::Mat& canvas, cv::Mat& image, const std::vector<PanelMap>& pa
     drawText(image, lines[i], anchor + cv::Point(0, kLineHeight * static_cast<int>(i)), colour);
 }
 
-/// A V-particle deciding between clusters (discriminative_attention.h): the
-/// outline of each competing interpretation, in its prototype's colour,
-/// thin and dashed by sampling every other segment.
+/// A V-particle deciding between look-alike clusters (discriminative_attention.h):
+/// the outline of each competing interpretation, in its prototype's colour,
+/// thin and dashed by sampling every other segment (none when none compete).
 void drawCompeting(cv::Mat& image, const PrototypeMemory& memory, const VParticleView& particle)
 {
   for (const CompetingView& c : particle.competing)
@@ -275,15 +275,14 @@ void drawCompeting(cv::Mat& image, const PrototypeMemory& memory, const VParticl
 
 /// V-particles on top: circle in the dominant prototype's colour, heading
 /// tick in the V-particle's own colour, and a white trail from where the
-/// optical flow took it in this frame. A V-particle whose move was chosen
-/// to decide between clusters has a white ring, and (draw_competing) the
-/// outlines of the interpretations it decides between.
+/// optical flow took it in this frame. A V-particle deciding between
+/// look-alike clusters has (draw_competing) their outlines drawn, and a
+/// white ring when its move was chosen to decide between them.
 void drawVParticles(cv::Mat& image, const PrototypeMemory& memory, const FilterView& view,
                     const OverlayOptions& options)
 {
   for (std::size_t v = 0; options.draw_v_particles && options.draw_competing && v < view.v.size(); ++v)
-    if (view.v[v].discriminating)
-      drawCompeting(image, memory, view.v[v]);
+    drawCompeting(image, memory, view.v[v]);
   for (std::size_t v = 0; options.draw_v_particles && v < view.v.size(); ++v)
   {
     const VParticleView& particle = view.v[v];
