@@ -43,7 +43,6 @@ struct Candidate
   std::vector<int> v_particles;  // V indices, one per correspondence
   Affine table_to_image;         // the fitted affine, table px -> input px
   double score_tolerance = 0.0;  // px: the score's tolerance at the object's size
-  bool competing = false;        // fitted from a competing cluster: not a leading hypothesis
 };
 
 /// Where the fit of one prototype starts: a group's affine and the affines
@@ -52,7 +51,6 @@ struct FitStart
 {
   int prototype;
   std::vector<Affine> affines;
-  bool competing = false;  ///< a V-particle's competing cluster (addCompetingStarts)
 };
 
 /// What every step of the extraction reads.
@@ -138,10 +136,7 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
                                                in.params.refine_search, rule);
   Candidate perspective;
   if (fit.used && describeObject(in, prototype, candidate.table_to_image, perspective, &fit))
-  {
-    perspective.competing = candidate.competing;
     candidate = std::move(perspective);
-  }
 }
 
 /// Whether a start of `prototype` begins near `centre` (image px).
@@ -187,7 +182,7 @@ void addCompetingStarts(const ExtractionInput& in, std::vector<FitStart>& starts
       Affine table_to_image;
       if (h.prototype == v.competing.hypothesis[0].prototype || !hypothesisTableToImage(h, table_to_image))
         continue;
-      alternatives.push_back({h.share, {h.prototype, {table_to_image}, true}});
+      alternatives.push_back({h.share, {h.prototype, {table_to_image}}});
     }
   std::stable_sort(alternatives.begin(), alternatives.end(),
                    [](const Alternative& a, const Alternative& b) { return a.share > b.share; });
@@ -286,7 +281,6 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
       if (describeObject(in, start.prototype, refined, candidate) &&
           (!found[s] || candidate.object.score > fitted[s].object.score))
       {
-        candidate.competing = start.competing;
         fitted[s] = std::move(candidate);
         found[s] = 1;
       }
