@@ -512,7 +512,7 @@ void ParticleFilter::update(int v_index, const RadialScanner& scanner)
     if (decidingBetweenLookAlikes(competing, static_cast<float>(params_.cluster_min_share)))
       v.competing = competing;
     DiscriminativeMove move;
-    if (params_.discriminative_moves && v.competing.count >= 2 &&
+    if (params_.discriminative_moves &&
         discriminator_.choose(v, v.competing, *memory_, observation_, image_size_, move))
     {
       u = move.control;
