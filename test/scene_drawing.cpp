@@ -407,6 +407,16 @@ amcr::RaySignature tableRays(const amcr::Prototype& prototype, int x, int y, int
   return s;
 }
 
+std::vector<cv::Point2d> drawnBird(bool crest)
+{
+  std::vector<cv::Point2d> polygon = {{15, 80},  {70, 100}, {90, 140}, {130, 150}, {155, 125},
+                                      {160, 100}, {185, 95}, {170, 80}, {160, 62}, {140, 62},
+                                      {130, 80},  {100, 90}, {60, 88}};
+  if (crest)
+    polygon.insert(polygon.begin() + 9, {{156, 40}, kCrestTip, {145, 42}});  // between (160, 62) and (140, 62)
+  return polygon;
+}
+
 std::vector<cv::Point2d> wavyOval(cv::Point2d centre, double a, double b, double wave)
 {
   std::vector<cv::Point2d> out;

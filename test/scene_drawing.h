@@ -65,6 +65,14 @@ cv::Mat drawRandomSilhouette(std::uint64_t seed);
 /// look-alike of the oval that follows its outline within `wave` px.
 std::vector<cv::Point2d> wavyOval(cv::Point2d centre, double a, double b, double wave);
 
+/// A bird in profile (prototype-image px), head to the right; with `crest`,
+/// a crest of three more vertices rises from the top of its head to
+/// kCrestTip: two look-alikes that differ in one part only.
+std::vector<cv::Point2d> drawnBird(bool crest);
+/// The crest's tip and the middle of the head's top it rises from.
+const cv::Point2d kCrestTip(150, 22);
+const cv::Point2d kCrestBase(150, 62);
+
 /// The prototype image: kPrototypeImageSize x kPrototypeImageSize, CV_8UC1,
 /// the filled shape at 255 on 0 (white_on_black) or 0 on 255. Antialiased
 /// edges unless `antialiased` is false (then only 0 and 255 occur).

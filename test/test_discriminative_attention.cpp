@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "amcr/discriminative_attention.h"
+#include "amcr/discriminative_places.h"
 #include "amcr/observation_model.h"
 #include "amcr/params.h"
 #include "amcr/prototype_memory.h"
@@ -209,7 +210,7 @@ TEST(DiscriminativeMoveChooser, PicksAMoveWhosePredictedScansDiffer)
   // Any gain is enough here: the test is about which move is chosen.
   const amcr::DiscriminativeMoveChooser chooser(params.v_step, 0.0);
   amcr::DiscriminativeMove move;
-  ASSERT_TRUE(chooser.choose(v, h, *memory, observation, cv::Size(400, 400), move));
+  ASSERT_TRUE(chooser.choose(v, h, *memory, observation, cv::Size(400, 400), nullptr, move));
   const double heading = v.theta + move.control.rotation;
   const float dx = static_cast<float>(move.control.translation * std::cos(heading));
   const float dy = static_cast<float>(move.control.translation * std::sin(heading));
@@ -245,10 +246,10 @@ TEST(DiscriminativeMoveChooser, PicksAMoveWhosePredictedScansDiffer)
   const amcr::DiscriminativeMoveChooser with_threshold(params.v_step, params.discriminative_min_gain);
   amcr::CompetingHypotheses one = h;
   one.count = 1;
-  EXPECT_FALSE(with_threshold.choose(v, one, *memory, observation, cv::Size(400, 400), move));
+  EXPECT_FALSE(with_threshold.choose(v, one, *memory, observation, cv::Size(400, 400), nullptr, move));
   amcr::CompetingHypotheses same = h;
   same.hypothesis[1].prototype = kPlainIndex;
-  EXPECT_FALSE(with_threshold.choose(v, same, *memory, observation, cv::Size(400, 400), move));
+  EXPECT_FALSE(with_threshold.choose(v, same, *memory, observation, cv::Size(400, 400), nullptr, move));
 }
 
 // A move never takes the V-particle past the edge its last scan met, nor out of the image.
@@ -269,16 +270,90 @@ TEST(DiscriminativeMoveChooser, StaysBeforeTheEdgesOfItsLastScan)
   h.hypothesis[1] = hypothesis(kNotchedIndex, at, {v.x, v.y}, 0.5f);
   const amcr::DiscriminativeMoveChooser chooser(params.v_step, 0.0);
   amcr::DiscriminativeMove move;
-  ASSERT_TRUE(chooser.choose(v, h, *memory, observation, cv::Size(400, 400), move));
+  ASSERT_TRUE(chooser.choose(v, h, *memory, observation, cv::Size(400, 400), nullptr, move));
   EXPECT_LE(move.control.translation, 6.0 - 1.5);
   // At the image's corner, moves that leave the image are not candidates.
   v.x = 2.f;
   v.y = 2.f;
   for (int k = 0; k < amcr::kFeatureRays; ++k)
     v.rays.distance[k] = 0.f;
-  ASSERT_TRUE(chooser.choose(v, h, *memory, observation, cv::Size(400, 400), move));
+  ASSERT_TRUE(chooser.choose(v, h, *memory, observation, cv::Size(400, 400), nullptr, move));
   const double heading = v.theta + move.control.rotation;
   EXPECT_GE(v.x + move.control.translation * std::cos(heading), 1.0);
   EXPECT_GE(v.y + move.control.translation * std::sin(heading), 1.0);
+}
+
+// With precomputed places, a V-particle deciding between the bird and the
+// crested bird from the tail heads for the crest (a lookup, however far it
+// lies); once within two steps of it, the candidate moves are scored again.
+TEST(DiscriminativeMoveChooser, HeadsForTheNearestPrecomputedPlace)
+{
+  amcr::Params params;
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  memory->add("bird", amcr_test::drawSilhouette(amcr_test::drawnBird(false)), params);
+  memory->add("crested", amcr_test::drawSilhouette(amcr_test::drawnBird(true)), params);
+  const amcr::ObservationModel observation(params);
+  const amcr::DiscriminativePlaces places =
+      amcr::DiscriminativePlaces::build(*memory, observation, amcr::DiscriminativePlacesSettings());
+  const amcr::AlikePair* pair = places.find(1, 0);
+  ASSERT_NE(pair, nullptr);
+  ASSERT_FALSE(pair->places.empty());
+
+  const amcr::Prototype& crested = (*memory)[1];
+  const cv::Point2f v_place(200.f, 200.f);
+  const auto deciding = [&](cv::Point2d original) {
+    amcr::CompetingHypotheses h;
+    h.count = 2;
+    h.hypothesis[0] = hypothesis(1, toTable(crested, original), v_place, 0.6f);
+    h.hypothesis[1] = hypothesis(0, toTable((*memory)[0], original), v_place, 0.3f);
+    return h;
+  };
+  amcr::VParticle v;
+  v.x = v_place.x;
+  v.y = v_place.y;
+  v.theta = 0.3f;
+  const amcr::DiscriminativeMoveChooser chooser(params.v_step, params.discriminative_min_gain);
+  amcr::DiscriminativeMove move;
+
+  // From inside the body near the tail, the nearest place is beyond two steps.
+  amcr::CompetingHypotheses h = deciding({60, 100});
+  ASSERT_TRUE(chooser.choose(v, h, *memory, observation, cv::Size(400, 400), &places, move));
+  EXPECT_TRUE(move.to_place);
+  // The place nearest the V-particle's table point, in the image (table px = image px here).
+  double nearest = 1e9;
+  cv::Point2d target;
+  float target_divergence = 0.f;
+  for (const amcr::DiscriminativePlace& p : pair->places)
+  {
+    const double d = std::hypot(p.x - h.hypothesis[0].x, p.y - h.hypothesis[0].y);
+    if (d < nearest)
+    {
+      nearest = d;
+      target = cv::Point2d(v_place) + cv::Point2d(p.x - h.hypothesis[0].x, p.y - h.hypothesis[0].y);
+      target_divergence = p.divergence;
+    }
+  }
+  ASSERT_GT(nearest, 2.0 * params.v_step);
+  const double heading = v.theta + move.control.rotation;
+  const cv::Point2d moved(v.x + move.control.translation * std::cos(heading),
+                          v.y + move.control.translation * std::sin(heading));
+  EXPECT_LT(std::hypot(target.x - moved.x, target.y - moved.y),
+            nearest - 0.5 * move.control.translation)
+      << "the step goes toward the place (along the feature ray nearest its direction)";
+  EXPECT_GT(move.control.translation, 0.0);
+  EXPECT_FLOAT_EQ(static_cast<float>(move.gain), target_divergence) << "the gain is the place's divergence";
+
+  // Without the places, the same V-particle scores the candidate moves.
+  amcr::DiscriminativeMove scored;
+  if (chooser.choose(v, h, *memory, observation, cv::Size(400, 400), nullptr, scored))
+    EXPECT_FALSE(scored.to_place);
+
+  // At the place itself the candidate moves are scored.
+  const amcr::DiscriminativePlace& best = pair->places.front();
+  h.hypothesis[0].x = best.x;
+  h.hypothesis[0].y = best.y;
+  amcr::DiscriminativeMove near;
+  if (chooser.choose(v, h, *memory, observation, cv::Size(400, 400), &places, near))
+    EXPECT_FALSE(near.to_place);
 }
 }  // namespace

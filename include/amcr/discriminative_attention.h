@@ -22,6 +22,7 @@
 
 namespace amcr
 {
+class DiscriminativePlaces;
 class ObservationModel;
 class Prototype;
 class PrototypeMemory;
@@ -56,17 +57,23 @@ bool hypothesisTableToImage(const CompetingHypothesis& h, Affine& table_to_image
 bool predictedRays(const Prototype& prototype, const CompetingHypothesis& h, float dx, float dy, float theta,
                    RaySignature& rays);
 
+/// The log-likelihood (nats, >= 0) one ray loses against the hypothesis
+/// that predicts distance `b` (px; 0: no edge) when the image shows `a`:
+/// log p(0) - log p(a - b) under eq. 5 when both have an edge, log p(0) -
+/// log p_invalid (eq. 6) when only one has, 0 when neither has.
+double rayDivergence(float a, float b, const ObservationModel& observation);
+
 /// The expected log-likelihood ratio (nats, >= 0) of an observation `a`
-/// against the hypothesis that predicts `b`, under the observation model:
-/// per ray log p(0) - log p(a - b) when both have an edge, log p(0) -
-/// log p_invalid when only one has.
+/// against the hypothesis that predicts `b`: rayDivergence summed over the
+/// rays.
 double scanDivergence(const RaySignature& a, const RaySignature& b, const ObservationModel& observation);
 
 /// A candidate move and what it is expected to tell.
 struct DiscriminativeMove
 {
   Control control;
-  double gain = 0.0;  ///< share-weighted divergence of the predicted scans, nats
+  double gain = 0.0;       ///< share-weighted divergence of the predicted scans, nats (a place's, toward one)
+  bool to_place = false;   ///< a step toward a precomputed discriminative place
 };
 
 /// Chooses the move of a V-particle that is deciding between clusters.
@@ -78,16 +85,28 @@ public:
   /// chosen.
   DiscriminativeMoveChooser(double step, double min_gain);
 
-  /// The best of the candidate moves of `v` (turn by k * 45 deg, then move
-  /// 1 or 2 steps; only as far as v's last scan leaves room before an
-  /// edge, and inside an image of `image_size`) for the hypotheses `h`.
-  /// False when fewer than two compete, no candidate keeps every hypothesis
-  /// inside its table, or the best gain is below min_gain: the V-particle
-  /// then explores as the policy says.
+  /// The move of `v` for the hypotheses `h`. With `places` (null: none),
+  /// when the leading cluster's prototype and the first other prototype
+  /// competing with it are a look-alike pair with places, and the nearest
+  /// of them (mapped into the image by the leading cluster's affine) lies
+  /// beyond 2 steps: 1 or 2 steps toward it, along the feature ray nearest
+  /// its direction (or a neighbour) that leaves room. Else the best of the
+  /// candidate moves (turn by k * 45 deg, then move 1 or 2 steps; only as
+  /// far as v's last scan leaves room before an edge, and inside an image
+  /// of `image_size`) by the clusters' predicted scans. False when fewer
+  /// than two compete, no candidate keeps every hypothesis inside its
+  /// table, or the best gain is below min_gain: the V-particle then
+  /// explores as the policy says.
   bool choose(const VParticle& v, const CompetingHypotheses& h, const PrototypeMemory& memory,
-              const ObservationModel& observation, const cv::Size& image_size, DiscriminativeMove& best) const;
+              const ObservationModel& observation, const cv::Size& image_size, const DiscriminativePlaces* places,
+              DiscriminativeMove& best) const;
 
 private:
+  /// The step toward the nearest place of the leading pair, when it lies
+  /// beyond 2 steps (choose()).
+  bool headForPlace(const VParticle& v, const CompetingHypotheses& h, const DiscriminativePlaces& places,
+                    const cv::Size& image_size, DiscriminativeMove& best) const;
+
   double step_;
   double min_gain_;
 };

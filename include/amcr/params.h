@@ -111,6 +111,10 @@ struct Params
   /// whose M-particles have found a shape while another prototype's cluster
   /// competes moves where their predicted scans differ most.
   bool discriminative_moves = false;
+  /// With discriminative_moves: the look-alike pairs and the places where
+  /// their scans differ are precomputed (discriminative_places.h), and a
+  /// V-particle deciding between two heads for the nearest such place.
+  bool discriminative_places = true;
   double discriminative_min_share = 0.05;  ///< share of a V's M-particles a competing cluster needs [0, 1]
   double discriminative_min_gain = 0.2;    ///< least expected log-likelihood ratio of a discriminative move, nats [0, 100]
   /// Competing clusters of V-particles whose prototypes are fitted and

@@ -24,6 +24,7 @@
 
 #include "amcr/affine.h"
 #include "amcr/discriminative_attention.h"
+#include "amcr/discriminative_places.h"
 #include "amcr/exploration_policy.h"
 #include "amcr/motion_model.h"
 #include "amcr/observation_model.h"
@@ -233,6 +234,11 @@ private:
   /// index_share is 0 or profile_index is off); its warnings go to `warnings`.
   std::shared_ptr<const ProfileIndex> buildProfileIndex(const PrototypeMemory& memory, const PrototypePrior& prior,
                                                         std::vector<std::string>& warnings) const;
+  /// The look-alike pairs of `memory` under `prior` and their places (null
+  /// unless discriminative_moves and discriminative_places), from the table
+  /// cache when it holds them; its warnings go to `warnings`.
+  std::shared_ptr<const DiscriminativePlaces> buildPlaces(const PrototypeMemory& memory, const PrototypePrior& prior,
+                                                          std::vector<std::string>& warnings) const;
   /// ray_correspondence affine: gives M-particle `index` a view shape,
   /// frontal or drawn (corrected_scan.h); true when it is not frontal.
   bool drawShape(MParticleSet& set, std::size_t index, Rng& rng) const;
@@ -271,6 +277,7 @@ private:
   std::vector<LeadingHypothesis> leading_;  // injected at the M-resamplings
   std::shared_ptr<const ProposalIndex> index_;  // null when index_share is 0
   std::shared_ptr<const ProfileIndex> profile_index_;  // null when index_share is 0 or profile_index is off
+  std::shared_ptr<const DiscriminativePlaces> places_;  // null unless discriminative_moves and discriminative_places
   std::vector<std::string> index_warnings_;
   std::vector<int> m_count_;                   // M-particles each V-particle holds
   cv::Mat held_mask_;  // CV_16UC1 of image_size_: 0 free, k + 1 inside held object k's hull; empty: none held

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "amcr/discriminative_places.h"
 #include "amcr/observation_model.h"
 #include "amcr/prototype_memory.h"
 #include "amcr/ray_directions.h"
@@ -13,6 +14,8 @@ namespace amcr
 {
 namespace
 {
+constexpr float kEdgeMargin = 1.5f;  // px kept before the edge a ray met, as the exploration policy keeps
+
 bool inCluster(const MParticleSet& m, std::size_t i, const CompetingHypothesis& h, float radius_squared)
 {
   if (m.prototype[i] != h.prototype)
@@ -115,24 +118,23 @@ bool predictedRays(const Prototype& prototype, const CompetingHypothesis& h, flo
 // Eq. 6 compares each valid ray by eq. 5 and gives an invalid one p_invalid:
 // the log-likelihood the hypothesis predicting `a` loses against the one
 // predicting `b` when `a` is what the image shows.
+double rayDivergence(float a, float b, const ObservationModel& observation)
+{
+  const bool valid_a = a > 0.f, valid_b = b > 0.f;
+  const double best = observation.logRayFromSquared(0.f);
+  if (valid_a && valid_b)
+  {
+    const float d = a - b;
+    return std::max(0.0, best - observation.logRayFromSquared(d * d));
+  }
+  return valid_a != valid_b ? std::max(0.0, best - observation.logInvalid()) : 0.0;
+}
+
 double scanDivergence(const RaySignature& a, const RaySignature& b, const ObservationModel& observation)
 {
-  const double best = observation.logRayFromSquared(0.f);
-  const double one_invalid = std::max(0.0, best - observation.logInvalid());
   double sum = 0.0;
   for (int k = 0; k < kFeatureRays; ++k)
-  {
-    const bool valid_a = a.distance[k] > 0.f, valid_b = b.distance[k] > 0.f;
-    if (valid_a && valid_b)
-    {
-      const float d = a.distance[k] - b.distance[k];
-      sum += std::max(0.0, best - observation.logRayFromSquared(d * d));
-    }
-    else if (valid_a != valid_b)
-    {
-      sum += one_invalid;
-    }
-  }
+    sum += rayDivergence(a.distance[k], b.distance[k], observation);
   return sum;
 }
 
@@ -142,16 +144,17 @@ DiscriminativeMoveChooser::DiscriminativeMoveChooser(double step, double min_gai
 
 bool DiscriminativeMoveChooser::choose(const VParticle& v, const CompetingHypotheses& h, const PrototypeMemory& memory,
                                        const ObservationModel& observation, const cv::Size& image_size,
-                                       DiscriminativeMove& best) const
+                                       const DiscriminativePlaces* places, DiscriminativeMove& best) const
 {
   if (h.count < 2 || step_ <= 0.0)
     return false;
+  if (places && headForPlace(v, h, *places, image_size, best))
+    return true;
   double total_share = 0.0;
   for (int i = 0; i < h.count; ++i)
     total_share += h.hypothesis[i].share;
   if (!(total_share > 0.0))
     return false;
-  const float margin = 1.5f;  // px kept before the edge a ray met, as the exploration policy keeps
   // One or two exploration steps: a longer move carries the M-particles
   // further on their affine A, fitted from rays of a few px, and costs more
   // of them their alignment (4 steps measured no better on `oblique`).
@@ -169,7 +172,7 @@ bool DiscriminativeMoveChooser::choose(const VParticle& v, const CompetingHypoth
     for (double multiple : multiples)
     {
       const double length = multiple * step_;
-      if (room > 0.f && length > room - margin)
+      if (room > 0.f && length > room - kEdgeMargin)
         break;
       const double dx = length * cx, dy = length * cy;
       const double ex = v.x + dx, ey = v.y + dy;
@@ -200,5 +203,66 @@ bool DiscriminativeMoveChooser::choose(const VParticle& v, const CompetingHypoth
     }
   }
   return found && best.gain >= min_gain_;
+}
+
+bool DiscriminativeMoveChooser::headForPlace(const VParticle& v, const CompetingHypotheses& h,
+                                             const DiscriminativePlaces& places, const cv::Size& image_size,
+                                             DiscriminativeMove& best) const
+{
+  const CompetingHypothesis& lead = h.hypothesis[0];
+  int other = 1;
+  while (other < h.count && h.hypothesis[other].prototype == lead.prototype)
+    ++other;
+  if (other == h.count)
+    return false;
+  const AlikePair* pair = places.find(lead.prototype, h.hypothesis[other].prototype);
+  if (!pair || pair->places.empty())
+    return false;
+  // The place nearest to where the leading cluster puts the V-particle.
+  const DiscriminativePlace* nearest = nullptr;
+  double nearest_squared = std::numeric_limits<double>::infinity();
+  for (const DiscriminativePlace& p : pair->places)
+  {
+    const double d = (p.x - lead.x) * (p.x - lead.x) + (p.y - lead.y) * (p.y - lead.y);
+    if (d < nearest_squared)
+    {
+      nearest_squared = d;
+      nearest = &p;
+    }
+  }
+  Affine table_to_image;
+  if (!hypothesisTableToImage(lead, table_to_image))
+    return false;
+  const cv::Point2d target = applyAffine(table_to_image, {nearest->x, nearest->y});
+  const double dx = target.x - v.x, dy = target.y - v.y, distance = std::hypot(dx, dy);
+  if (!(distance > 2.0 * step_))
+    return false;  // near: the candidate moves see the place's difference
+  // Along the feature ray nearest the place's direction, else a neighbour:
+  // only those rays' last scan tells the room before an edge.
+  const double ray_angle = 2.0 * M_PI / kFeatureRays;
+  const double bearing = wrapAngle(std::atan2(dy, dx) - v.theta);  // from the heading
+  const int nearest_ray = static_cast<int>(std::lround(bearing / ray_angle));
+  const double off = bearing - nearest_ray * ray_angle;
+  const int rays[] = {nearest_ray, nearest_ray + (off > 0 ? 1 : -1), nearest_ray + (off > 0 ? -1 : 1)};
+  for (int ray : rays)
+  {
+    const int k = ((ray % kFeatureRays) + kFeatureRays) % kFeatureRays;
+    const double heading = v.theta + k * ray_angle;
+    const float room = v.rays.distance[k];
+    for (double multiple : {2.0, 1.0})
+    {
+      const double length = multiple * step_;
+      const double ex = v.x + length * std::cos(heading), ey = v.y + length * std::sin(heading);
+      if ((room > 0.f && length > room - kEdgeMargin) || ex < 1 || ey < 1 || ex > image_size.width - 2 ||
+          ey > image_size.height - 2)
+        continue;
+      best.control.rotation = wrapAngle(heading - v.theta);
+      best.control.translation = length;
+      best.gain = nearest->divergence;
+      best.to_place = true;
+      return true;
+    }
+  }
+  return false;
 }
 }  // namespace amcr

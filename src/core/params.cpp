@@ -70,6 +70,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(motion_noise_rotation, "rad", 0, 3.15, "M-particle rotation noise"),
       AMCR_DOUBLE(reflection_jitter, "rad", 0, 3.15, "largest random turn added at a reflection"),
       AMCR_INT(discriminative_moves, "", 0, 1, "1: a V-particle deciding between M-clusters moves where their predicted scans differ most"),
+      AMCR_INT(discriminative_places, "", 0, 1, "1: with discriminative_moves, a V-particle heads for the nearest precomputed place where its look-alikes differ"),
       AMCR_DOUBLE(discriminative_min_share, "", 0, 1, "share of a V-particle's M-particles a competing cluster needs"),
       AMCR_DOUBLE(discriminative_min_gain, "nats", 0, 100, "least expected log-likelihood ratio for which a discriminative move is made"),
       AMCR_INT(competing_fits, "", 0, 64, "competing clusters of V-particles fitted and verified on the image per frame beside the groups"),

@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amcr/corrected_scan.h"
+#include "amcr/discriminative_places_cache.h"
 #include "amcr/errors.h"
 #include "amcr/heading_proposal.h"
 #include "amcr/parallel_for.h"
@@ -58,6 +59,7 @@ ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const Proto
 {
   index_ = buildIndex(*memory_, prior_, index_warnings_);
   profile_index_ = buildProfileIndex(*memory_, prior_, index_warnings_);
+  places_ = buildPlaces(*memory_, prior_, index_warnings_);
   reset();
 }
 
@@ -91,6 +93,21 @@ std::shared_ptr<const ProfileIndex> ParticleFilter::buildProfileIndex(const Prot
   return index;
 }
 
+std::shared_ptr<const DiscriminativePlaces> ParticleFilter::buildPlaces(const PrototypeMemory& memory,
+                                                                       const PrototypePrior& prior,
+                                                                       std::vector<std::string>& warnings) const
+{
+  if (!params_.discriminative_moves || !params_.discriminative_places)
+    return nullptr;
+  DiscriminativePlacesSettings settings;
+  settings.index_stride = params_.index_stride;
+  settings.threads = resolveThreads(params_.num_threads);
+  const TableCache cache(tableCacheDirectory(params_.table_cache_dir));
+  return loadDiscriminativePlaces(memory, observation_, settings, prior.activeMask(),
+                                  cache.readable() ? &cache : nullptr,
+                                  [&warnings](const std::string& line) { warnings.push_back(line); });
+}
+
 void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
 {
   if (!policy)
@@ -119,11 +136,13 @@ void ParticleFilter::swapMemory(std::shared_ptr<const PrototypeMemory> memory)
   std::vector<std::string> warnings;
   std::shared_ptr<const ProposalIndex> index = buildIndex(*memory, prior, warnings);
   std::shared_ptr<const ProfileIndex> profile_index = buildProfileIndex(*memory, prior, warnings);
+  std::shared_ptr<const DiscriminativePlaces> places = buildPlaces(*memory, prior, warnings);
   // Nothing failed: swap everything at once (on an error the old memory stays).
   memory_ = std::move(memory);
   prior_ = std::move(prior);
   index_ = std::move(index);
   profile_index_ = std::move(profile_index);
+  places_ = std::move(places);
   index_warnings_ = std::move(warnings);
 }
 
@@ -513,7 +532,7 @@ void ParticleFilter::update(int v_index, const RadialScanner& scanner)
       v.competing = competing;
     DiscriminativeMove move;
     if (params_.discriminative_moves &&
-        discriminator_.choose(v, v.competing, *memory_, observation_, image_size_, move))
+        discriminator_.choose(v, v.competing, *memory_, observation_, image_size_, places_.get(), move))
     {
       u = move.control;
       v.discriminating = true;
