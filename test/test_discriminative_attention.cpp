@@ -346,7 +346,9 @@ TEST(DiscriminativeMoveChooser, HeadsForTheNearestPrecomputedPlace)
   // Without the places, the same V-particle scores the candidate moves.
   amcr::DiscriminativeMove scored;
   if (chooser.choose(v, h, *memory, observation, cv::Size(400, 400), nullptr, scored))
+  {
     EXPECT_FALSE(scored.to_place);
+  }
 
   // At the place itself the candidate moves are scored.
   const amcr::DiscriminativePlace& best = pair->places.front();
@@ -354,6 +356,8 @@ TEST(DiscriminativeMoveChooser, HeadsForTheNearestPrecomputedPlace)
   h.hypothesis[0].y = best.y;
   amcr::DiscriminativeMove near;
   if (chooser.choose(v, h, *memory, observation, cv::Size(400, 400), &places, near))
+  {
     EXPECT_FALSE(near.to_place);
+  }
 }
 }  // namespace

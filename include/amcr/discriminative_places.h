@@ -50,7 +50,7 @@ struct DiscriminativePlacesSettings
   int search = 16;                 ///< index places compared per lookup
   double min_confusion = 0.15;     ///< share of a prototype's looked-up places that must name the other
   int max_alike = 4;               ///< look-alikes kept per prototype, most confused first
-  int places = 6;                  ///< places kept per ordered pair
+  int places = 6;                  ///< places kept per ordered pair; 0: the pairs and their alignment only
   double min_divergence = 0.2;     ///< nats: a place where the scans differ less is not kept
   int threads = 1;                 ///< threads for the comparisons (the result does not depend on them)
 };
@@ -86,6 +86,9 @@ public:
 
   /// The pair (a, b), or null when b is not a look-alike of a.
   const AlikePair* find(int a, int b) const;
+
+  /// Every pair whose first prototype is `a` (its look-alikes), most confused first.
+  std::vector<const AlikePair*> lookAlikesOf(int a) const;
 
   const std::vector<AlikePair>& pairs() const { return pairs_; }
 

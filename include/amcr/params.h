@@ -117,9 +117,10 @@ struct Params
   bool discriminative_places = true;
   double discriminative_min_share = 0.05;  ///< share of a V's M-particles a competing cluster needs [0, 1]
   double discriminative_min_gain = 0.2;    ///< least expected log-likelihood ratio of a discriminative move, nats [0, 100]
-  /// Competing clusters of V-particles whose prototypes are fitted and
-  /// verified on the image per frame beside the groups' (object_extractor.cpp)
-  /// [0, 64]; 0 = none.
+  /// Competing clusters of V-particles, then look-alikes of tracked objects'
+  /// prototypes (discriminative_places.h), fitted and verified on the image
+  /// per frame beside the groups' (object_extractor.cpp) [0, 64]; 0 = none
+  /// (and no look-alike pairs are found).
   int competing_fits = 4;
 
   // Resampling (paper 3.6).

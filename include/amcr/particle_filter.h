@@ -174,6 +174,10 @@ public:
   static constexpr int kProfileCandidates = 8;
   /// What the last memory's index build left out (a line per prototype).
   const std::vector<std::string>& indexWarnings() const { return index_warnings_; }
+  /// The memory's look-alike pairs (discriminative_places.h), with their
+  /// places when discriminative_moves and discriminative_places are on;
+  /// null when competing_fits is 0 and the moves are off.
+  const DiscriminativePlaces* lookAlikes() const { return places_.get(); }
   /// The prototype of each of a V-particle's M-particle slots at seeding.
   const std::vector<int>& priorSlots() const { return prior_.slots(); }
   /// The size of the image the filter was seeded on.
@@ -234,9 +238,8 @@ private:
   /// index_share is 0 or profile_index is off); its warnings go to `warnings`.
   std::shared_ptr<const ProfileIndex> buildProfileIndex(const PrototypeMemory& memory, const PrototypePrior& prior,
                                                         std::vector<std::string>& warnings) const;
-  /// The look-alike pairs of `memory` under `prior` and their places (null
-  /// unless discriminative_moves and discriminative_places), from the table
-  /// cache when it holds them; its warnings go to `warnings`.
+  /// The look-alike pairs of `memory` under `prior` (lookAlikes()), from
+  /// the table cache when it holds them; its warnings go to `warnings`.
   std::shared_ptr<const DiscriminativePlaces> buildPlaces(const PrototypeMemory& memory, const PrototypePrior& prior,
                                                           std::vector<std::string>& warnings) const;
   /// ray_correspondence affine: gives M-particle `index` a view shape,
@@ -277,7 +280,7 @@ private:
   std::vector<LeadingHypothesis> leading_;  // injected at the M-resamplings
   std::shared_ptr<const ProposalIndex> index_;  // null when index_share is 0
   std::shared_ptr<const ProfileIndex> profile_index_;  // null when index_share is 0 or profile_index is off
-  std::shared_ptr<const DiscriminativePlaces> places_;  // null unless discriminative_moves and discriminative_places
+  std::shared_ptr<const DiscriminativePlaces> places_;  // lookAlikes()
   std::vector<std::string> index_warnings_;
   std::vector<int> m_count_;                   // M-particles each V-particle holds
   cv::Mat held_mask_;  // CV_16UC1 of image_size_: 0 free, k + 1 inside held object k's hull; empty: none held

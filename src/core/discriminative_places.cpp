@@ -261,8 +261,11 @@ DiscriminativePlaces DiscriminativePlaces::build(const PrototypeMemory& memory, 
     ab.a_to_b = alignment.a_to_b;
     ba.a_to_b = b_to_a;
     ab.confusions = ba.confusions = confused;
-    ab.places = discriminativePlaces(pa, pb, ab.a_to_b, observation, settings.places, settings.min_divergence);
-    ba.places = discriminativePlaces(pb, pa, ba.a_to_b, observation, settings.places, settings.min_divergence);
+    if (settings.places > 0)
+    {
+      ab.places = discriminativePlaces(pa, pb, ab.a_to_b, observation, settings.places, settings.min_divergence);
+      ba.places = discriminativePlaces(pb, pa, ba.a_to_b, observation, settings.places, settings.min_divergence);
+    }
     compared[static_cast<std::size_t>(k)] = {std::move(ab), std::move(ba)};
   });
   for (std::vector<AlikePair>& both : compared)
@@ -280,5 +283,17 @@ const AlikePair* DiscriminativePlaces::find(int a, int b) const
                                      return std::make_pair(p.a, p.b) < key;
                                    });
   return (at != pairs_.end() && at->a == a && at->b == b) ? &*at : nullptr;
+}
+
+std::vector<const AlikePair*> DiscriminativePlaces::lookAlikesOf(int a) const
+{
+  std::vector<const AlikePair*> out;
+  for (auto at = std::lower_bound(pairs_.begin(), pairs_.end(), a,
+                                  [](const AlikePair& p, int key) { return p.a < key; });
+       at != pairs_.end() && at->a == a; ++at)
+    out.push_back(&*at);
+  std::stable_sort(out.begin(), out.end(),
+                   [](const AlikePair* p, const AlikePair* q) { return p->confusions > q->confusions; });
+  return out;
 }
 }  // namespace amcr

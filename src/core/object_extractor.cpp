@@ -8,6 +8,7 @@
 
 #include "amcr/differing_parts.h"
 #include "amcr/discriminative_attention.h"
+#include "amcr/discriminative_places.h"
 #include "amcr/outline_edges.h"
 #include "amcr/outline_fit.h"
 #include "amcr/parallel_for.h"
@@ -35,6 +36,15 @@ constexpr std::size_t kMaxPerspectiveFits = 3;     // best candidates per frame 
 constexpr double kDifferingApart = 2.0;
 constexpr int kMinDifferingPoints = 6;
 constexpr double kDifferingPartsMargin = 0.25;
+// A look-alike that verifies clearly (kClearWholeScore) and this much better
+// on the whole outline wins whatever its differing part shows: a part of a
+// few dozen points is read less surely than the whole, and one that
+// verifies short of the decision threshold there while the whole verifies
+// at 0.99 is still the better fit (one bird's other pose, on `similar`).
+// Blobs of clutter, which a look-alike may fit a little better than the
+// prototype they were taken for, rarely verify that well.
+constexpr double kClearWholeMargin = 0.1;
+constexpr double kClearWholeScore = 0.9;
 
 /// An object verified on the image, with the V-particles that support it.
 struct Candidate
@@ -43,6 +53,7 @@ struct Candidate
   std::vector<int> v_particles;  // V indices, one per correspondence
   Affine table_to_image;         // the fitted affine, table px -> input px
   double score_tolerance = 0.0;  // px: the score's tolerance at the object's size
+  bool adopted = false;          // took over a look-alike's V-particles (adoptSupport)
 };
 
 /// Where the fit of one prototype starts: a group's affine and the affines
@@ -158,12 +169,44 @@ bool startedNear(const ExtractionInput& in, const std::vector<FitStart>& starts,
   return false;
 }
 
+/// The look-alikes of each tracked object's prototype (discriminative_places.h),
+/// where the pair's alignment puts them on the object (b's table -> a's
+/// table -> image), the least well verified object first.
+std::vector<FitStart> lookAlikeStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
+                                      const std::vector<Affine>& track_affines)
+{
+  std::vector<FitStart> starts;
+  const DiscriminativePlaces* alike = in.filter.lookAlikes();
+  if (!alike)
+    return starts;
+  std::vector<std::size_t> by_score(tracks.size());
+  for (std::size_t k = 0; k < by_score.size(); ++k)
+    by_score[k] = k;
+  std::stable_sort(by_score.begin(), by_score.end(), [&tracks](std::size_t i, std::size_t j) {
+    return tracks[i].object.score < tracks[j].object.score;
+  });
+  for (std::size_t k : by_score)
+    for (const AlikePair* pair : alike->lookAlikesOf(tracks[k].object.prototype_id))
+    {
+      Affine b_to_a;
+      if (invertAffine(pair->a_to_b, b_to_a))
+        starts.push_back({pair->b, {composeAffine(b_to_a, track_affines[k])}});
+    }
+  return starts;
+}
+
 // The other interpretations V-particles are still deciding between
 // (discriminative_attention.h): each gets a fit of its own where no start
 // of its prototype is near, the largest clusters first, so that of alike
 // shapes at one place the image's outline decides (report() keeps the better
-// of overlapping objects, and a better one leads the injection).
-void addCompetingStarts(const ExtractionInput& in, std::vector<FitStart>& starts)
+// of overlapping objects, and a better one leads the injection). Then the
+// look-alikes of each tracked object's prototype (discriminative_places.h),
+// where the pair's alignment puts them on the object, the least well
+// verified object first: once a track's V-particles have converged on one
+// of two prototypes the index confuses, no cluster of the other is left to
+// compete, and a wrong one would be held for good.
+void addCompetingStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
+                        const std::vector<Affine>& track_affines, std::vector<FitStart>& starts)
 {
   if (in.params.competing_fits <= 0)
     return;
@@ -186,6 +229,8 @@ void addCompetingStarts(const ExtractionInput& in, std::vector<FitStart>& starts
     }
   std::stable_sort(alternatives.begin(), alternatives.end(),
                    [](const Alternative& a, const Alternative& b) { return a.share > b.share; });
+  for (FitStart& start : lookAlikeStarts(in, tracks, track_affines))
+    alternatives.push_back({0.f, std::move(start)});
   int added = 0;
   for (Alternative& a : alternatives)
   {
@@ -258,7 +303,7 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   for (std::size_t k = 0; k < tracks.size(); ++k)
     if (!track_used[k])
       starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}});
-  addCompetingStarts(in, starts);
+  addCompetingStarts(in, tracks, track_affines, starts);
   return starts;
 }
 
@@ -347,6 +392,13 @@ std::vector<LeadingHypothesis> leadingHypotheses(const ExtractionInput& in, cons
   return leading;
 }
 
+/// Whether `better` verifies clearly and kClearWholeMargin better than
+/// `supported` on the whole outline.
+bool clearlyBetterOnTheWhole(const Candidate& better, const Candidate& supported)
+{
+  return better.object.score >= kClearWholeScore && better.object.score - supported.object.score >= kClearWholeMargin;
+}
+
 /// Whether `better`, which verifies at least as well as `supported` on the
 /// whole outline, also does on the parts where the two outlines differ
 /// (differing_parts.h): its own differing part verifies as an object must
@@ -372,9 +424,9 @@ bool winsOnDifferingParts(const ExtractionInput& in, const Candidate& better, co
 // crest) while a competing cluster's fit (addCompetingStarts) verifies
 // better. A candidate that overlaps a better supported one of another
 // prototype, verifies at least as well on the whole outline and clearly
-// better on the parts where the two differ, takes over its V-particles as
-// support, each with the correspondence its own transform gives; report()
-// then suppresses the other.
+// better on the parts where the two differ (or clearly better on the whole),
+// takes over its V-particles as support, each with the correspondence its
+// own transform gives; report() then suppresses the other.
 void adoptSupport(const ExtractionInput& in, std::vector<Candidate>& candidates)
 {
   const std::vector<VParticle>& v = in.filter.vParticles();
@@ -388,7 +440,7 @@ void adoptSupport(const ExtractionInput& in, std::vector<Candidate>& candidates)
           supported.object.support <= better.object.support ||
           better.object.score < in.params.decision_threshold ||
           outlineOverlap(better.object.outline, supported.object.outline) <= kSameObjectOverlap ||
-          !winsOnDifferingParts(in, better, supported))
+          !(clearlyBetterOnTheWhole(better, supported) || winsOnDifferingParts(in, better, supported)))
         continue;
       RecognizedObject& object = better.object;
       object.correspondences.clear();
@@ -399,6 +451,7 @@ void adoptSupport(const ExtractionInput& in, std::vector<Candidate>& candidates)
         object.correspondences.push_back({image_point, applyAffine(object.image_to_prototype, image_point)});
       }
       object.support = static_cast<int>(object.correspondences.size());
+      better.adopted = true;
     }
   }
 }
@@ -418,7 +471,12 @@ void report(const Params& params, const TrackRegistry& registry, std::vector<Can
     // follow it alone.
     const Track* track = registry.continued(c);
     const double threshold = params.decision_threshold * (track ? kKeepTrackRatio : 1.0);
-    const int support = !track ? params.min_support : track->object.state == ObjectState::kTentative ? 1 : 0;
+    // One that took over a look-alike's V-particles needs one of them: the
+    // look-alike had min_support when it was found, and a held object keeps
+    // only held_v_particles.
+    int support = candidate.adopted ? 1 : params.min_support;
+    if (track)
+      support = track->object.state == ObjectState::kTentative ? 1 : 0;
     if (c.score < threshold || c.support < support || (!track && !registry.hasRoom(new_tracks)))
       continue;
     bool suppressed = false;

@@ -73,7 +73,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_INT(discriminative_places, "", 0, 1, "1: with discriminative_moves, a V-particle heads for the nearest precomputed place where its look-alikes differ"),
       AMCR_DOUBLE(discriminative_min_share, "", 0, 1, "share of a V-particle's M-particles a competing cluster needs"),
       AMCR_DOUBLE(discriminative_min_gain, "nats", 0, 100, "least expected log-likelihood ratio for which a discriminative move is made"),
-      AMCR_INT(competing_fits, "", 0, 64, "competing clusters of V-particles fitted and verified on the image per frame beside the groups"),
+      AMCR_INT(competing_fits, "", 0, 64, "competing clusters of V-particles, then look-alikes of tracked objects, fitted and verified per frame beside the groups"),
       AMCR_INT(v_resample_interval, "iterations", 1, 1000, "w: V-particles are resampled every w iterations; paper 10"),
       AMCR_DOUBLE(v_reseed_fraction, "", 0, 1, "share of V-particles re-seeded at V-resampling"),
       AMCR_DOUBLE(m_reseed_fraction, "", 0, 1, "share of M-particles re-seeded uniformly per iteration"),

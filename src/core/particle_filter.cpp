@@ -97,9 +97,13 @@ std::shared_ptr<const DiscriminativePlaces> ParticleFilter::buildPlaces(const Pr
                                                                        const PrototypePrior& prior,
                                                                        std::vector<std::string>& warnings) const
 {
-  if (!params_.discriminative_moves || !params_.discriminative_places)
+  const bool moves_to_places = params_.discriminative_moves && params_.discriminative_places;
+  if (!moves_to_places && params_.competing_fits <= 0)
     return nullptr;
+  // The competing fits need only the pairs and their alignment (a held
+  // object's look-alikes are fitted where it lies); the places are for the moves.
   DiscriminativePlacesSettings settings;
+  settings.places = moves_to_places ? settings.places : 0;
   settings.index_stride = params_.index_stride;
   settings.threads = resolveThreads(params_.num_threads);
   const TableCache cache(tableCacheDirectory(params_.table_cache_dir));
