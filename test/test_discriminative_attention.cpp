@@ -343,21 +343,21 @@ TEST(DiscriminativeMoveChooser, HeadsForTheNearestPrecomputedPlace)
   EXPECT_GT(move.control.translation, 0.0);
   EXPECT_FLOAT_EQ(static_cast<float>(move.gain), target_divergence) << "the gain is the place's divergence";
 
-  // Without the places, the same V-particle scores the candidate moves.
+  // Without the places, the same V-particle scores the candidate moves
+  // (any gain is enough here: the test is about which kind of move it is).
+  const amcr::DiscriminativeMoveChooser scoring(params.v_step, 0.0);
   amcr::DiscriminativeMove scored;
-  if (chooser.choose(v, h, *memory, observation, cv::Size(400, 400), nullptr, scored))
-  {
-    EXPECT_FALSE(scored.to_place);
-  }
+  ASSERT_TRUE(scoring.choose(v, h, *memory, observation, cv::Size(400, 400), nullptr, scored));
+  EXPECT_FALSE(scored.to_place);
 
   // At the place itself the candidate moves are scored.
   const amcr::DiscriminativePlace& best = pair->places.front();
   h.hypothesis[0].x = best.x;
   h.hypothesis[0].y = best.y;
+  h.hypothesis[1].x = static_cast<float>(amcr::applyAffine(pair->a_to_b, {best.x, best.y}).x);
+  h.hypothesis[1].y = static_cast<float>(amcr::applyAffine(pair->a_to_b, {best.x, best.y}).y);
   amcr::DiscriminativeMove near;
-  if (chooser.choose(v, h, *memory, observation, cv::Size(400, 400), &places, near))
-  {
-    EXPECT_FALSE(near.to_place);
-  }
+  ASSERT_TRUE(scoring.choose(v, h, *memory, observation, cv::Size(400, 400), &places, near));
+  EXPECT_FALSE(near.to_place);
 }
 }  // namespace

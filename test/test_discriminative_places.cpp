@@ -2,7 +2,6 @@
 // look-alike pairs the index confuses, their alignment, the places where
 // their scans differ, and those places in the table cache.
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -200,8 +199,7 @@ TEST_F(DiscriminativePlacesTest, KeptInTheTableCache)
   EXPECT_TRUE(warnings.empty());
   const std::uint64_t key = amcr::discriminativePlacesKey(*memory, observation, settings, {});
   std::vector<std::uint8_t> payload;
-  char name[48];
-  std::snprintf(name, sizeof name, "places-%016llx.bin", static_cast<unsigned long long>(key));
+  const std::string name = amcr::discriminativePlacesCacheName(key);
   ASSERT_EQ(cache.readPayload(name, key, payload), "");
   EXPECT_EQ(payload, built->toBytes());
   const auto read = amcr::loadDiscriminativePlaces(*memory, observation, settings, {}, &cache, warn);

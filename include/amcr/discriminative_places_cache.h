@@ -28,6 +28,9 @@ constexpr std::uint32_t kPlacesFormatVersion = 1;
 std::uint64_t discriminativePlacesKey(const PrototypeMemory& memory, const ObservationModel& observation,
                                       const DiscriminativePlacesSettings& settings, const std::vector<bool>& active);
 
+/// The cache file of the pairs with `key` ("places-<key in hex>.bin").
+std::string discriminativePlacesCacheName(std::uint64_t key);
+
 /// The pairs read from `cache` (null: no cache) when its file with their
 /// key holds them, else built (DiscriminativePlaces::build) and written
 /// there. `warn` receives one line for a refused file or a failed write.

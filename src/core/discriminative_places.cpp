@@ -67,20 +67,30 @@ double divergenceAt(const Prototype& a, const Prototype& b, const Affine& a_to_b
   return sum / (kDirectionBins / kFeatureRays);  // one 8-ray scan per heading, 9 headings
 }
 
+/// A place of a table and the radial profile the table holds there.
+struct SampledPlace
+{
+  cv::Point at;
+  RadialProfile profile;
+};
+
 /// Up to `count` places of `p` spread over its table where the index can
 /// answer (the profile is defined), in row order.
-std::vector<cv::Point> samplePlaces(const Prototype& p, int count)
+std::vector<SampledPlace> samplePlaces(const Prototype& p, int count)
 {
-  std::vector<cv::Point> valid;
+  std::vector<SampledPlace> valid;
   const int step = std::max(1, longerSide(p) / 32);
-  RadialProfile profile;
+  SampledPlace place;
   for (int y = step / 2; y < p.height(); y += step)
     for (int x = step / 2; x < p.width(); x += step)
-      if (tableProfile(p, x, y, profile))
-        valid.emplace_back(x, y);
+      if (tableProfile(p, x, y, place.profile))
+      {
+        place.at = cv::Point(x, y);
+        valid.push_back(place);
+      }
   if (static_cast<int>(valid.size()) <= count)
     return valid;
-  std::vector<cv::Point> picked;
+  std::vector<SampledPlace> picked;
   for (int i = 0; i < count; ++i)
     picked.push_back(valid[static_cast<std::size_t>(i) * valid.size() / static_cast<std::size_t>(count)]);
   return picked;
@@ -98,22 +108,21 @@ std::map<int, Confusion> confusionsOf(const PrototypeMemory& memory, const Profi
                                       const DiscriminativePlacesSettings& settings, int& looked_up)
 {
   std::map<int, Confusion> out;
-  const std::vector<cv::Point> places = samplePlaces(memory[a], settings.samples);
-  looked_up = 0;
-  RadialProfile profile;
-  for (const cv::Point& p : places)
+  const std::vector<SampledPlace> places = samplePlaces(memory[a], settings.samples);
+  looked_up = static_cast<int>(places.size());
+  for (const SampledPlace& place : places)
   {
-    if (!tableProfile(memory[a], p.x, p.y, profile))
-      continue;
-    ++looked_up;
+    const cv::Point& p = place.at;
     std::vector<int> named;
-    const std::vector<ProposalCandidate> answers = index.query(memory, profile, settings.search, settings.answers);
+    const std::vector<ProposalCandidate> answers =
+        index.query(memory, place.profile, settings.search, settings.answers);
     // The place is taken for another prototype when that one's answer fits
     // about as well as the best of its own prototype's (or the best at all):
     // in a small memory every answer list names others, alike or not.
     float own = std::numeric_limits<float>::infinity();
     for (const ProposalCandidate& c : answers)
-      own = std::min(own, c.prototype == a ? c.distance : own);
+      if (c.prototype == a)
+        own = std::min(own, c.distance);
     if (answers.empty())
       continue;
     if (!std::isfinite(own))

@@ -12,15 +12,12 @@
 
 namespace amcr
 {
-namespace
-{
-std::string placesCacheName(std::uint64_t key)
+std::string discriminativePlacesCacheName(std::uint64_t key)
 {
   char name[48];
   std::snprintf(name, sizeof name, "places-%016llx.bin", static_cast<unsigned long long>(key));
   return name;
 }
-}  // namespace
 
 std::uint64_t discriminativePlacesKey(const PrototypeMemory& memory, const ObservationModel& observation,
                                       const DiscriminativePlacesSettings& settings, const std::vector<bool>& active)
@@ -49,7 +46,7 @@ std::shared_ptr<const DiscriminativePlaces> loadDiscriminativePlaces(
     const std::vector<bool>& active, const TableCache* cache, const std::function<void(const std::string&)>& warn)
 {
   const std::uint64_t key = cache ? discriminativePlacesKey(memory, observation, settings, active) : 0;
-  const std::string name = placesCacheName(key);
+  const std::string name = discriminativePlacesCacheName(key);
   if (cache)
   {
     std::vector<std::uint8_t> payload;
