@@ -105,6 +105,7 @@ TEST(ResourceBounds, TableMemoryAboveTheBoundIsRefusedBeforeBuilding)
   amcr_test::TempDir dir;
   amcr::Params params;
   params.prototype_size = 512;  // up to 29.5 MB of table per prototype
+  params.table_stride = 1;      // given: the stride chosen by default (0) would fit them at 4
   const long files = amcr::kMaxTableBytes / amcr::maxTableBytesPerPrototype(512) + 1;
   for (long i = 0; i < files; ++i)
     std::ofstream(dir.file("p" + std::to_string(i) + ".png")) << "x";

@@ -61,10 +61,15 @@ struct Params
 
   // Prototype memory.
   int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]
-  /// Spacing of the lookup tables' nodes, table px [1, 4]: 1 = a scan at
+  /// Spacing of the lookup tables' nodes, table px [0, 4]: 1 = a scan at
   /// every pixel (exact lookups); s = one per s x s block, s^2 times less
-  /// memory and build time (Prototype(); README, "Compact tables").
-  int table_stride = 1;
+  /// memory and build time (Prototype(); README, "Compact tables"); 0 = the
+  /// smallest stride whose tables fit table_budget_mb for the memory's size
+  /// (table_stride_choice.h).
+  int table_stride = 0;
+  /// Most memory the lookup tables may take when table_stride is 0, MB
+  /// [16, 4096]; a given table_stride above it is used with a warning.
+  int table_budget_mb = 1024;
   /// Directory of the cached lookup tables (table_cache.h), read when a
   /// memory is loaded from a directory, and of the proposal index's k-d
   /// tree (index_cache.h), read when a recognizer is built: "" =

@@ -33,14 +33,18 @@ public:
   /// refused, or a cache that cannot be used, is a warning too. The memory
   /// is the same whatever the thread count and whatever came from the
   /// cache. Throws MemoryError when the directory is missing, empty, or no
-  /// prototype is left. A load that takes more than a few seconds sends a
+  /// prototype is left. The tables' stride is chosen for the number of
+  /// files first (chooseTableStride): its reason goes to `progress`, or to
+  /// `warn` when the tables may exceed params.table_budget_mb. A load that
+  /// takes more than a few seconds sends a
   /// progress line to `progress` every few seconds (files done, built, read
   /// from the cache; called from the loading threads, one at a time).
   static PrototypeMemory loadDirectory(const std::string& directory, const Params& params,
                                        const WarningSink& warn = WarningSink(),
                                        const WarningSink& progress = WarningSink());
 
-  /// Adds one prototype from an image in memory. With no `instance`, a new
+  /// Adds one prototype from an image in memory, at params.table_stride, or
+  /// with table_stride 0 at the stride of the memory (tableStride()). With no `instance`, a new
   /// label (MemoryError when the label is taken; the instance is the
   /// label); with one, an instance of `label`, new or not (MemoryError when
   /// the instance is taken). MemoryError too when the image holds no shape.
@@ -72,6 +76,10 @@ public:
   /// Memory held by all lookup tables, bytes.
   std::size_t tableBytes() const;
 
+  /// The stride loadDirectory() chose or was given (chooseTableStride), or
+  /// that of the first add(); 0 for an empty memory built by the default constructor.
+  int tableStride() const { return table_stride_; }
+
   /// How loadDirectory() found the tables (all zero for a memory built by add()).
   const TableCacheCounts& cacheCounts() const { return cache_counts_; }
 
@@ -82,5 +90,6 @@ private:
   std::vector<std::shared_ptr<const Prototype>> prototypes_;
   std::vector<std::string> labels_;
   TableCacheCounts cache_counts_;
+  int table_stride_ = 0;
 };
 }  // namespace amcr

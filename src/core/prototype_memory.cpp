@@ -10,6 +10,7 @@
 #include "amcr/prototype_directory.h"
 #include "amcr/prototype_file.h"
 #include "amcr/resource_bounds.h"
+#include "amcr/table_stride_choice.h"
 
 namespace amcr
 {
@@ -75,7 +76,14 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
 {
   params.validate();
   const std::vector<PrototypeSource> files = listPrototypeDirectory(directory, warn);
-  checkTableBound(0, files.size(), params.prototype_size, params.table_stride);
+  const TableStrideChoice stride = chooseTableStride(files.size(), params);
+  if (stride.over_budget && warn)
+    warn(stride.reason);
+  else if (progress)
+    progress(stride.reason);
+  Params table_params = params;  // what the tables are built with, the stride resolved
+  table_params.table_stride = stride.stride;
+  checkTableBound(0, files.size(), params.prototype_size, table_params.table_stride);
 
   std::string cache_off;
   const TableCache cache(tableCacheDirectory(params.table_cache_dir, &cache_off));
@@ -95,7 +103,7 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
     {
       try
       {
-        loaded[i] = loadPrototypeFile(files[i].path, files[i].label, params, cache, files[i].instance);
+        loaded[i] = loadPrototypeFile(files[i].path, files[i].label, table_params, cache, files[i].instance);
         load_progress.done(loaded[i].from_cache);
       }
       catch (...)  // not a bad file (bad_alloc, a cv::Exception): rethrown on this thread below
@@ -106,6 +114,7 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
   });
 
   PrototypeMemory memory;
+  memory.table_stride_ = stride.stride;
   for (std::size_t i = 0; i < files.size(); ++i)
   {
     if (failed[i])
@@ -135,9 +144,12 @@ void PrototypeMemory::add(const std::string& label, const cv::Mat& image, const 
 {
   if (instance.empty() && find(label) >= 0)
     throw MemoryError("prototype label '" + label + "' is already in the memory");
-  checkTableBound(tableBytes(), 1, params.prototype_size, params.table_stride);
+  if (table_stride_ == 0)  // the first prototype of a memory built one by one
+    table_stride_ = params.table_stride > 0 ? params.table_stride : chooseTableStride(1, params).stride;
+  const int stride = params.table_stride > 0 ? params.table_stride : table_stride_;
+  checkTableBound(tableBytes(), 1, params.prototype_size, stride);
   append(std::make_shared<const Prototype>(label, image, params.prototype_size, params.edge_threshold,
-                                           params.blur_sigma, params.table_stride, instance));
+                                           params.blur_sigma, stride, instance));
 }
 
 void PrototypeMemory::append(std::shared_ptr<const Prototype> prototype)

@@ -136,7 +136,8 @@ ConfigBounds reconfigureBounds()
 bool tablesDiffer(const amcr::Params& a, const amcr::Params& b)
 {
   return a.prototype_size != b.prototype_size || a.edge_threshold != b.edge_threshold ||
-         a.blur_sigma != b.blur_sigma || a.table_stride != b.table_stride;
+         a.blur_sigma != b.blur_sigma || a.table_stride != b.table_stride ||
+         a.table_budget_mb != b.table_budget_mb;
 }
 
 std::string describeChanges(const amcr::Params& before, const amcr::Params& after)
