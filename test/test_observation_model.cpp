@@ -106,6 +106,22 @@ TEST(ObservationModel, LogInvalidIsLogPInvalid)
   }
 }
 
+// The mixture form's terms are densities over the ray's range [0, L]: an
+// invalid ray weighs p_invalid / L, as an outlier weighs p_outlier / L.
+// With p_invalid itself (a probability, 0.1 against at most 0.07 for a
+// perfect ray at sigma_w 5), an M-particle where no ray meets an edge
+// outscored one where all eight fit, and the form recognized nothing.
+TEST(ObservationModel, MixtureFormWeighsAnInvalidRayAsADensity)
+{
+  amcr::Params p = paperParams();
+  p.likelihood_form = amcr::LikelihoodForm::kMixture;
+  p.sigma_w = 5.0;
+  const amcr::ObservationModel model(p);
+  EXPECT_NEAR(model.logInvalid(), std::log(0.1 / 200.0), 1e-12);
+  EXPECT_GT(model.logRay(0.0), model.logInvalid() + 4.0) << "a fitting ray must outweigh a missing one";
+  EXPECT_GT(model.logRay(2.0 * p.sigma_w), model.logInvalid()) << "so must a ray 2 sigma_w off";
+}
+
 /// A relational particle whose deviations are known: an M-particle at a
 /// pixel of a drawn star where all 8 feature rays meet an edge, the identity
 /// affine (B = A = I), and V-particle rays ending dw[k] px to the right of
@@ -197,7 +213,7 @@ TEST(ObservationModel, LogLikelihoodIsEq6)
         state = state * 1664525u + 1013904223u;
         d[j] = (state >> 8) % 6000 / 100.f;  // 0 .. 60 px
         v[j] = (state >> 3) % 4 != 0;
-        expected += v[j] ? m.logRay(d[j]) : std::log(0.07);
+        expected += v[j] ? m.logRay(d[j]) : m.logInvalid();
       }
       EXPECT_NEAR(known.logLikelihood(m, d, v), expected, 8e-3) << amcr::toString(form) << " trial " << trial;
     }

@@ -132,7 +132,9 @@ Reference reference(const amcr::Params& p, const amcr::Prototype& prototype, con
                     float my, float mtheta)
 {
   Reference r;
-  const double log_invalid = std::log(p.p_invalid);
+  // Eq. 6's term of an invalid ray; the mixture form's terms are densities over [0, L].
+  const double log_invalid = std::log(p.likelihood_form == amcr::LikelihoodForm::kPaper ? p.p_invalid
+                                                                                       : p.p_invalid / p.max_ray_length);
   r.log_likelihood = kFeatureRays * log_invalid;
   std::fill(r.deviation, r.deviation + kFeatureRays, -1.0);
   // The table pixel and direction bin the model looks up are part of its

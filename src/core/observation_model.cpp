@@ -29,7 +29,10 @@ ObservationModel::ObservationModel(const Params& params)
   , p_outlier_(params.p_outlier)
   , outlier_density_(params.likelihood_form == LikelihoodForm::kPaper ? params.p_outlier
                                                                        : params.p_outlier / params.max_ray_length)
-  , log_invalid_(std::log(std::max(params.p_invalid, 1e-300)))
+  , log_invalid_(std::log(std::max(params.likelihood_form == LikelihoodForm::kPaper
+                                        ? params.p_invalid
+                                        : params.p_invalid / params.max_ray_length,
+                                    1e-300)))
   , min_triangle_area_(static_cast<float>(params.min_triangle_area))
   , max_affine_scale_(static_cast<float>(params.max_affine_scale))
   , deviation_space_(params.deviation_space)
