@@ -30,6 +30,7 @@ amcr::LifecycleRule rule()
   amcr::LifecycleRule r;
   r.confirm_frames = 3;
   r.lost_frames = 2;
+  r.recall_frames = 3;
   r.max_objects = 3;
   r.hold_score = 0.75;
   return r;
@@ -91,11 +92,67 @@ TEST(ObjectLifecycle, TentativeConfirmedHeldLost)
   EXPECT_TRUE(registry.tracks().empty());
   EXPECT_TRUE(frame(registry, none).empty());
 
-  // The same place later is a new object with a new id.
+  // Found again where it was lost, within recall_frames: the same track,
+  // under its id and confirmed at once (it was; the tracker has not
+  // followed it into this frame, so it is not held yet).
   std::vector<amcr::RecognizedObject> later = {starAt(205, 200)};
   frame(registry, later);
-  EXPECT_EQ(later[0].track_id, id + 1);
-  EXPECT_EQ(later[0].state, ObjectState::kTentative);
+  EXPECT_EQ(later[0].track_id, id);
+  EXPECT_EQ(later[0].state, ObjectState::kConfirmed);
+  EXPECT_TRUE(registry.ended().empty());
+}
+
+// An ended track is given back only to an object of its label, where it was
+// last, within recall_frames; anything else starts a new track.
+TEST(ObjectLifecycle, AnEndedTrackIsRecalledOnlyByItsLabelAtItsPlaceInTime)
+{
+  const auto endedTrack = [](amcr::TrackRegistry& registry) {
+    std::vector<amcr::RecognizedObject> seen = {starAt(200, 200)};
+    frame(registry, seen);
+    std::vector<amcr::RecognizedObject> none;
+    for (int k = 0; k < rule().lost_frames; ++k)
+      frame(registry, none);
+    EXPECT_EQ(registry.ended().size(), 1u);
+    return seen[0].track_id;
+  };
+  {
+    amcr::TrackRegistry registry(rule());
+    const int id = endedTrack(registry);
+    std::vector<amcr::RecognizedObject> other_label = {starAt(200, 200)};
+    other_label[0].label = "another";
+    frame(registry, other_label);
+    EXPECT_NE(other_label[0].track_id, id) << "another label at the place";
+    std::vector<amcr::RecognizedObject> elsewhere = {starAt(400, 300)};
+    frame(registry, elsewhere);
+    EXPECT_NE(elsewhere[0].track_id, id) << "the label elsewhere";
+    std::vector<amcr::RecognizedObject> back = {starAt(202, 201)};
+    frame(registry, back);
+    EXPECT_EQ(back[0].track_id, id) << "the label at the place, 3 frames after the end";
+  }
+  {
+    amcr::TrackRegistry registry(rule());
+    const int id = endedTrack(registry);
+    std::vector<amcr::RecognizedObject> none;
+    for (int k = 0; k < rule().recall_frames; ++k)
+      frame(registry, none);
+    std::vector<amcr::RecognizedObject> late = {starAt(200, 200)};
+    frame(registry, late);  // recall_frames + 1 frames after the end
+    EXPECT_TRUE(registry.ended().empty()) << "forgotten after recall_frames";
+    EXPECT_EQ(late[0].track_id, id + 1);
+    EXPECT_EQ(late[0].state, ObjectState::kTentative);
+  }
+  {
+    amcr::LifecycleRule never = rule();
+    never.recall_frames = 0;
+    amcr::TrackRegistry registry(never);
+    std::vector<amcr::RecognizedObject> seen = {starAt(200, 200)}, none;
+    frame(registry, seen);
+    for (int k = 0; k < never.lost_frames; ++k)
+      frame(registry, none);
+    std::vector<amcr::RecognizedObject> back = {starAt(200, 200)};
+    frame(registry, back);
+    EXPECT_EQ(back[0].track_id, seen[0].track_id + 1) << "recall_frames 0: never recalled";
+  }
 }
 
 // A confirmed object the tracker did not follow into the frame is

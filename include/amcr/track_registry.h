@@ -9,7 +9,11 @@
 // not reported coasts: the optical flow moves it and the next fit starts
 // from it, and it keeps its id when it is found again. An object continues
 // the track of its prototype whose outline (moved by the flow) overlaps it
-// most. Ids are never reused within the registry's life.
+// most. A track that ended is remembered for params.recall_frames frames: an
+// object of its label that no live track takes and that overlaps its last
+// outline continues it (its id and its record: a part that was missed for a
+// while on a static scene is the same part). Ids are never given to another
+// object within the registry's life.
 #pragma once
 
 #include <vector>
@@ -27,6 +31,7 @@ struct LifecycleRule
 {
   int confirm_frames = 3;   ///< reports that make a tentative object confirmed
   int lost_frames = 5;      ///< frames in a row without a report that end a track
+  int recall_frames = 30;   ///< frames an ended track may still be continued (its id given back); 0 = never
   int max_objects = 16;     ///< tracks kept at once, coasting ones included
   double min_overlap = 0.3; ///< outline overlap (intersection over union) that continues a track
   double hold_score = 0.75; ///< score a confirmed object needs to be held (params.decision_threshold)
@@ -76,17 +81,26 @@ public:
 
   const std::vector<Track>& tracks() const { return tracks_; }
 
-  /// Forgets the tracks; ids go on counting, so none is reused.
+  /// The tracks that ended within the last recall_frames frames, as they ended.
+  const std::vector<Track>& ended() const { return ended_; }
+
+  /// Forgets the tracks, live and ended; ids go on counting, so none is reused.
   void clear();
 
 private:
   /// Index of the track `object` continues, or -1; tracks marked in `taken`
   /// are not considered.
   int match(const RecognizedObject& object, const std::vector<bool>& taken) const;
+  /// Index of the ended track `object` continues (the same label, the most
+  /// overlap with its last outline, at least min_overlap), or -1.
+  int recall(const RecognizedObject& object) const;
+  /// Ages the ended tracks by a frame and forgets those past recall_frames.
+  void ageEnded();
 
   LifecycleRule rule_;
   int next_id_ = 1;
   std::vector<Track> tracks_;
+  std::vector<Track> ended_;  // misses counts the frames since the end
 };
 
 /// Intersection over union of the areas two closed outlines enclose (both

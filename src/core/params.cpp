@@ -94,6 +94,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(min_object_size, "input px", 0, 4000, "smallest object reported: longer side of the smallest rectangle around its outline"),
       AMCR_INT(confirm_frames, "frames", 1, 1000, "frames an object is reported in before it is confirmed (tentative until then)"),
       AMCR_INT(lost_frames, "frames", 1, 1000, "frames in a row without a report after which an object's track ends (lost)"),
+      AMCR_INT(recall_frames, "frames", 0, 10000, "frames after its end during which a lost track's id is given back to an object of its label found where it was last; 0 = never"),
       AMCR_INT(max_objects, "", 1, 256, "tracks kept at once, coasting ones included; no new object is reported beyond"),
       AMCR_INT(held_v_particles, "V-particles", 0, 5000, "V-particles a held object keeps at V-resampling; the rest look elsewhere"),
       AMCR_DOUBLE(scene_prior_share, "", 0, 1, "share of new M-particles drawn in the prototypes of the held objects (copies of what is in view are likely); 0 = the context prior alone"),
@@ -195,6 +196,10 @@ void Params::validate() const
 {
   for (const auto& p : numericParameters())
   {
+    // The seed's range is that of a number read exactly (2^53, setParameter);
+    // every 64-bit seed set directly (amcr_offline --seed, ~seed as a string) is valid.
+    if (p.info.name == "seed")
+      continue;
     const double value = p.get(*this);
     if (!std::isfinite(value) || value < p.info.min || value > p.info.max)
     {

@@ -10,6 +10,7 @@ namespace amcr
 namespace
 {
 constexpr double kOverlapGridCells = 64.0;  // cells along the longer side of the common grid
+constexpr int kEndedPerObject = 4;          // ended tracks remembered, per track kept at once (max_objects)
 
 cv::Rect2d boundsOf(const std::vector<cv::Point2d>& points)
 {
@@ -63,20 +64,26 @@ cv::Point2d outlineCentre(const std::vector<cv::Point2d>& outline)
 LifecycleRule::LifecycleRule(const Params& params)
   : confirm_frames(params.confirm_frames)
   , lost_frames(params.lost_frames)
+  , recall_frames(params.recall_frames)
   , max_objects(params.max_objects)
   , hold_score(params.decision_threshold)
 {
 }
 
-int TrackRegistry::match(const RecognizedObject& object, const std::vector<bool>& taken) const
+namespace
+{
+/// Index of the track of `object`'s label, not taken, whose outline overlaps
+/// its own most (at least `min_overlap`), or -1.
+int bestOverlap(const std::vector<Track>& tracks, const RecognizedObject& object, const std::vector<bool>& taken,
+                double min_overlap)
 {
   int best = -1;
-  double best_overlap = rule_.min_overlap;
-  for (std::size_t t = 0; t < tracks_.size(); ++t)
+  double best_overlap = min_overlap;
+  for (std::size_t t = 0; t < tracks.size(); ++t)
   {
-    if ((t < taken.size() && taken[t]) || tracks_[t].object.label != object.label)
+    if ((t < taken.size() && taken[t]) || tracks[t].object.label != object.label)
       continue;
-    const double o = outlineOverlap(tracks_[t].object.outline, object.outline);
+    const double o = outlineOverlap(tracks[t].object.outline, object.outline);
     if (o >= best_overlap)
     {
       best_overlap = o;
@@ -84,6 +91,26 @@ int TrackRegistry::match(const RecognizedObject& object, const std::vector<bool>
     }
   }
   return best;
+}
+}  // namespace
+
+int TrackRegistry::match(const RecognizedObject& object, const std::vector<bool>& taken) const
+{
+  return bestOverlap(tracks_, object, taken, rule_.min_overlap);
+}
+
+int TrackRegistry::recall(const RecognizedObject& object) const
+{
+  return bestOverlap(ended_, object, {}, rule_.min_overlap);
+}
+
+void TrackRegistry::ageEnded()
+{
+  for (Track& t : ended_)
+    ++t.misses;
+  ended_.erase(std::remove_if(ended_.begin(), ended_.end(),
+                              [this](const Track& t) { return t.misses > rule_.recall_frames; }),
+               ended_.end());
 }
 
 const Track* TrackRegistry::continued(const RecognizedObject& object) const
@@ -101,16 +128,23 @@ void TrackRegistry::assign(std::vector<RecognizedObject>& objects)
 void TrackRegistry::assign(std::vector<RecognizedObject>& objects, const cv::Size& image,
                            std::vector<RecognizedObject>& ended)
 {
+  ageEnded();
   std::vector<Track> next;
   std::vector<bool> taken(tracks_.size(), false);
   for (auto& object : objects)
   {
     const int best = match(object, taken);
+    const int recalled = best < 0 ? recall(object) : -1;
     Track track;
     if (best >= 0)
     {
       taken[best] = true;
       track = tracks_[best];
+    }
+    else if (recalled >= 0)
+    {
+      track = ended_[recalled];
+      ended_.erase(ended_.begin() + recalled);
     }
     else
     {
@@ -143,7 +177,14 @@ void TrackRegistry::assign(std::vector<RecognizedObject>& objects, const cv::Siz
     if (left || track.misses >= rule_.lost_frames)
     {
       track.object.state = ObjectState::kLost;
-      ended.push_back(std::move(track.object));
+      ended.push_back(track.object);
+      if (!left && rule_.recall_frames > 0)
+      {
+        track.misses = 0;
+        ended_.push_back(std::move(track));
+        if (ended_.size() > static_cast<std::size_t>(kEndedPerObject * rule_.max_objects))
+          ended_.erase(ended_.begin());  // the oldest
+      }
     }
     else
     {
@@ -165,5 +206,9 @@ void TrackRegistry::followAll()
     t.followed = true;
 }
 
-void TrackRegistry::clear() { tracks_.clear(); }
+void TrackRegistry::clear()
+{
+  tracks_.clear();
+  ended_.clear();
+}
 }  // namespace amcr
