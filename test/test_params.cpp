@@ -230,4 +230,12 @@ TEST_F(ParamsYaml, MissingFileIsAnError)
 {
   EXPECT_THROW(amcr::loadParams(dir_.file("does_not_exist.yaml")), amcr::Error);
 }
+// A seed set directly (amcr_offline --seed, ~seed as a string) is any 64-bit
+// value; only a seed read as a number is bound to 2^53, the largest read exactly.
+TEST(Params, EverySixtyFourBitSeedSetDirectlyIsValid)
+{
+  amcr::Params p;
+  p.seed = std::numeric_limits<std::uint64_t>::max();
+  EXPECT_NO_THROW(p.validate());
+}
 }  // namespace

@@ -1,6 +1,8 @@
 #include "parameter_loading.h"
 
+#include <charconv>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <system_error>
 
@@ -10,6 +12,22 @@
 
 namespace amcr_ros
 {
+namespace
+{
+/// ~seed given as a string: every 64-bit seed, which an XML-RPC integer
+/// (32-bit) cannot carry. Whole decimal digits only, as amcr_offline --seed.
+std::uint64_t seedFromText(const std::string& text)
+{
+  std::uint64_t seed = 0;
+  const char* end = text.data() + text.size();
+  const auto parsed = std::from_chars(text.data(), end, seed);
+  if (text.empty() || parsed.ec != std::errc() || parsed.ptr != end)
+    throw amcr::ParameterError("~seed '" + text + "' must be a whole number in [0, " +
+                               std::to_string(std::numeric_limits<std::uint64_t>::max()) + "]");
+  return seed;
+}
+}  // namespace
+
 amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::string>* notes)
 {
   amcr::Params params;
@@ -35,6 +53,14 @@ amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::stri
   {
     if (!private_nh.hasParam(info.name))
       continue;
+    std::string seed_text;
+    if (info.name == "seed" && private_nh.getParam(info.name, seed_text))
+    {
+      params.seed = seedFromText(seed_text);
+      if (notes)
+        notes->push_back("seed = " + seed_text);
+      continue;
+    }
     double value = 0.0;
     int int_value = 0;
     bool bool_value = false;
@@ -46,7 +72,8 @@ amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::stri
       value = bool_value ? 1.0 : 0.0;
     else
       throw amcr::ParameterError("~" + info.name + " must be a number (" + info.unit + ", [" +
-                                 std::to_string(info.min) + ", " + std::to_string(info.max) + "])");
+                                 std::to_string(info.min) + ", " + std::to_string(info.max) + "])" +
+                                 (info.name == "seed" ? " or, for a seed above 2147483647, a string of digits" : ""));
     amcr::setParameter(params, info.name, value);
     if (notes)
       notes->push_back(info.name + " = " + std::to_string(value));

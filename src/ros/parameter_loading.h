@@ -1,6 +1,7 @@
 // amcr::Params from a node's private namespace: first the YAML file named by
-// ~config (cv::FileStorage format, config/amcr.yaml), then every parameter of
-// amcr::parameterTable() set individually under the private namespace.
+// ~config (config/amcr.yaml), then every parameter of amcr::parameterTable()
+// set individually under the private namespace. A ROS integer parameter is
+// 32-bit (XML-RPC): ~seed may also be a string of digits, for any 64-bit seed.
 #pragma once
 
 #include <string>

@@ -57,6 +57,13 @@ int clampToInt(double value)
                                      static_cast<double>(std::numeric_limits<int>::max())));
 }
 
+/// The seed as dynamic_reconfigure's int_t (32-bit) shows it: a 64-bit seed
+/// (~seed given as a string) above its range is shown as its largest value.
+int shownSeed(std::uint64_t seed)
+{
+  return static_cast<int>(std::min<std::uint64_t>(seed, std::numeric_limits<int>::max()));
+}
+
 /// A value for a log line: an int_t or bool_t of the .cfg as an integer ("60", not "60.000000").
 std::string formatValue(const std::string& name, double value)
 {
@@ -79,7 +86,8 @@ amcr::AMCRConfig toConfig(const amcr::Params& params)
   for (const auto& d : configFields())
   {
     if (const auto* f = asField<int>(d))
-      config.*(f->field) = static_cast<int>(amcr::getParameter(params, d->name));
+      config.*(f->field) = d->name == "seed" ? shownSeed(params.seed)
+                                             : static_cast<int>(amcr::getParameter(params, d->name));
     else if (const auto* f = asField<double>(d))
       config.*(f->field) = amcr::getParameter(params, d->name);
     else if (const auto* f = asField<bool>(d))
@@ -95,7 +103,11 @@ amcr::Params fromConfig(const amcr::AMCRConfig& config, amcr::Params params)
   for (const auto& d : configFields())
   {
     if (const auto* f = asField<int>(d))
+    {
+      if (d->name == "seed" && config.*(f->field) == shownSeed(params.seed))
+        continue;  // unchanged: a 64-bit seed stays whole
       amcr::setParameter(params, d->name, static_cast<double>(config.*(f->field)));
+    }
     else if (const auto* f = asField<double>(d))
       amcr::setParameter(params, d->name, config.*(f->field));
     else if (const auto* f = asField<bool>(d))

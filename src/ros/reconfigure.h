@@ -20,10 +20,12 @@ namespace amcr_ros
 /// Level bit of cfg/AMCR.cfg: the prototype lookup tables must be rebuilt.
 constexpr std::uint32_t kReconfigureTables = 1;
 
+/// A seed above int_t's range (~seed given as a string) is shown as 2147483647.
 amcr::AMCRConfig toConfig(const amcr::Params& params);
 
 /// `base` with every value of `config`; throws amcr::ParameterError (not validated here),
-/// also for a parameter of the .cfg that amcr::Params does not know.
+/// also for a parameter of the .cfg that amcr::Params does not know. The seed
+/// is kept whole while `config` shows it as toConfig(base) does.
 amcr::Params fromConfig(const amcr::AMCRConfig& config, amcr::Params base);
 
 /// The smallest and largest value of every numeric parameter: amcr::parameterTable()'s range, within int
