@@ -37,7 +37,7 @@ struct DrawnScene
 };
 
 /// One shape near the centre of a 640 x 480 scene over distractor shapes (no
-/// lines: one crossing the shape would join its outline to the region's border).
+/// lines: RegionShape.ALineAcrossTheShapeIsCutOff draws its own).
 DrawnScene drawScene(ShapeId id, double rotation, double scale)
 {
   amcr_test::Scene scene;
@@ -182,6 +182,49 @@ TEST(RegionShape, TheLargestClosedOutlineClearOfTheBorderIsTheShape)
   EXPECT_LE(std::abs(cut.bounds.width - expected.width), 2);
   EXPECT_LE(std::abs(cut.bounds.height - expected.height), 2);
   EXPECT_NEAR(cv::countNonZero(cut.silhouette), 90 * 100, 0.05 * 90 * 100);
+}
+
+/// The point of the shape farthest inside it.
+cv::Point2d deepestPoint(const std::vector<cv::Point2d>& truth, const cv::Size& size)
+{
+  cv::Mat mask = cv::Mat::zeros(size, CV_8UC1), distance;
+  amcr_test::fillPolygon(mask, truth, 255.0, false);
+  cv::distanceTransform(mask, distance, cv::DIST_L2, 3);
+  cv::Point deepest;
+  cv::minMaxLoc(distance, nullptr, nullptr, nullptr, &deepest);
+  return deepest;
+}
+
+// A line (a cable, a table edge) across the shape, through its thickest
+// part, and the whole region joins the outline to the region's border: the
+// line is cut off and the shape is still cut close to the truth (the stubs
+// of the line at the outline, a few px long, are left). Before, no outline
+// stayed clear of the border and the cut failed ("no closed outline").
+TEST(RegionShape, ALineAcrossTheShapeIsCutOff)
+{
+  struct Line
+  {
+    double grey;     // the line's grey level (background 190 or so, shapes darker)
+    int width;       // px
+    double angle;    // rad, through the shape's centre
+  };
+  for (ShapeId id : {ShapeId::kStar, ShapeId::kCrescent, ShapeId::kArrow})
+    for (const Line line : {Line{20.0, 3, 0.3}, Line{250.0, 2, 1.9}, Line{30.0, 5, -0.8}})
+    {
+      DrawnScene scene = drawScene(id, 0.4 + 1.1 * static_cast<int>(id), 0.8);
+      const cv::Point2d centre = deepestPoint(scene.truth, scene.image.size());
+      const cv::Point2d along(std::cos(line.angle), std::sin(line.angle));
+      cv::line(scene.image, centre - 400.0 * along, centre + 400.0 * along, cv::Scalar(line.grey), line.width,
+               cv::LINE_AA);
+      const std::string what = amcr_test::shapeName(id) + " crossed by a line of grey " +
+                               std::to_string(static_cast<int>(line.grey)) + ", " + std::to_string(line.width) + " px";
+      const amcr::CutShape cut = amcr::cutShape(scene.image, regionAround(scene.truth), amcr::Params());
+      ASSERT_TRUE(cut.ok()) << what << ": " << cut.why;
+      const Comparison c = compare(cut, scene.truth, scene.image.size());
+      std::cout << "[ cut      ] " << what << ": IoU " << c.iou << ", area ratio " << c.area_ratio << "\n";
+      EXPECT_GE(c.iou, 0.85) << what;
+      EXPECT_NEAR(c.area_ratio, 1.0, 0.12) << what;
+    }
 }
 
 // Bad regions and images: no shape, and a reason naming the problem.

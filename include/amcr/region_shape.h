@@ -13,7 +13,12 @@
 // and whose interior (the filled contour less the closed edges) covers at
 // least kMinRegionShare of the region and kMinShapeArea px; its filled
 // contour is the silhouette. A stroke (an open line) has no interior and is
-// never a shape. Canny's edges are 1 px wide on the outline, so the filled
+// never a shape. When no outline stays clear of the border, a line may cross
+// the shape (a cable, a table edge): then the pixels free of edges that
+// connect to the border are taken as outside, the rest is opened by
+// kLineCutSize px to cut off the line's stubs, and the largest part that
+// touches the border no more than a stub or two would (grown back within the
+// opening's reach) is the shape. Canny's edges are 1 px wide on the outline, so the filled
 // contour needs no erosion: it holds the outline's edge pixels, on average
 // half a px outside the true outline (the area 1-4 % above the truth on the
 // drawn shapes of test/test_region_shape.cpp).
@@ -34,6 +39,10 @@ constexpr int kRegionInset = 3;
 /// Side of the closing's structuring element (an ellipse), px: gaps in an
 /// outline up to about this wide are bridged.
 constexpr int kClosingSize = 5;
+/// Side of the opening (an ellipse) that cuts a line crossing the shape off
+/// it, px: a line whose closed edges are narrower is cut, as are the two
+/// edges of a wider one (its inside connects to the border).
+constexpr int kLineCutSize = 9;
 /// Least share of the region's area the shape's interior covers.
 constexpr double kMinRegionShare = 0.02;
 /// Least area of the shape's interior, px.

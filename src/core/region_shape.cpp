@@ -10,6 +10,7 @@ namespace amcr
 namespace
 {
 constexpr int kFillShift = 4;  // fractional bits of the region's corners in cv::fillPoly
+constexpr int kMaxLineContact = 4 * kLineCutSize;  // border px a shape crossed by lines may touch
 
 /// Area of a polygon, px^2 (whatever its orientation).
 double area(const std::vector<cv::Point2d>& polygon)
@@ -57,6 +58,67 @@ CutShape failure(const std::string& why)
   CutShape cut;
   cut.why = why;
   return cut;
+}
+
+/// The shape when a line (a cable, a table edge) crosses it: its edges join
+/// the outline to the region's border, so no outline stays clear of it. The
+/// pixels free of edges that connect to the border are outside, with the
+/// edges widened by the opening's reach first: where the line meets the
+/// shape, the outline has a gap as wide as the line (a dark line over a dark
+/// shape steps nowhere), and the strip between the line's edges would lead
+/// the outside in. What the outside (grown back) leaves is the shape with
+/// the line's stubs, which an opening of kLineCutSize px removes. The part of
+/// the opened mask (8-connected) that touches the border at most where a
+/// stub or two may (kMaxLineContact px) with the largest area
+/// of at least `least_area` is grown back within the opening's reach, to give
+/// back the corners the opening rounded. Its outer contour, or none (empty)
+/// when no part qualifies.
+std::vector<cv::Point> shapeCrossedByLines(const cv::Mat& closed, const cv::Mat& inner, const cv::Mat& border,
+                                           double least_area)
+{
+  const cv::Mat cut_lines = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(kLineCutSize, kLineCutSize));
+  cv::Mat widened;
+  cv::dilate(closed, widened, cut_lines);
+  cv::Mat parts;
+  const int count = cv::connectedComponents(inner & ~widened, parts, 4, CV_32S);
+  std::vector<uchar> outside_part(static_cast<std::size_t>(count), 0);
+  for (int y = 0; y < parts.rows; ++y)
+    for (int x = 0; x < parts.cols; ++x)
+      if (border.at<uchar>(y, x) && parts.at<int>(y, x) > 0)
+        outside_part[static_cast<std::size_t>(parts.at<int>(y, x))] = 255;
+  cv::Mat outside(parts.size(), CV_8UC1);
+  for (int y = 0; y < parts.rows; ++y)
+    for (int x = 0; x < parts.cols; ++x)
+      outside.at<uchar>(y, x) = outside_part[static_cast<std::size_t>(parts.at<int>(y, x))];
+  cv::dilate(outside, outside, cut_lines);
+  const cv::Mat shape = inner & ~outside;
+  cv::Mat opened;
+  cv::morphologyEx(shape, opened, cv::MORPH_OPEN, cut_lines, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::Mat pieces, stats, centroids;
+  const int pieces_count = cv::connectedComponentsWithStats(opened, pieces, stats, centroids, 8, CV_32S);
+  int best = -1;
+  double best_area = least_area;
+  for (int i = 1; i < pieces_count; ++i)
+  {
+    const double piece_area = stats.at<int>(i, cv::CC_STAT_AREA);
+    // A line's stub may still reach the border where the shape comes close
+    // to it; a shape the region cuts through meets the border along more.
+    if (piece_area < best_area || cv::countNonZero((pieces == i) & border) > kMaxLineContact)
+      continue;
+    best = i;
+    best_area = piece_area;
+  }
+  if (best < 0)
+    return {};
+  cv::Mat grown;
+  cv::dilate(pieces == best, grown, cut_lines);
+  grown &= shape;
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(grown, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  const auto largest = std::max_element(contours.begin(), contours.end(), [](const auto& a, const auto& b) {
+    return cv::contourArea(a) < cv::contourArea(b);
+  });
+  return largest == contours.end() ? std::vector<cv::Point>() : *largest;
 }
 
 CutShape outsideImage(const cv::Size& size)
@@ -169,9 +231,15 @@ CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, 
     }
   }
   if (best < 0)
-    return failure("no closed outline inside the region: none of its " + std::to_string(contours.size()) +
-                   " edge contours stays clear of the region's border and encloses at least " +
-                   formatNumber(std::round(least_area)) + " px");
+  {
+    std::vector<cv::Point> crossed = shapeCrossedByLines(closed, inner, border, least_area);
+    if (crossed.empty())
+      return failure("no closed outline inside the region: none of its " + std::to_string(contours.size()) +
+                     " edge contours stays clear of the region's border and encloses at least " +
+                     formatNumber(std::round(least_area)) + " px, even with the lines that reach the border cut off");
+    contours = {std::move(crossed)};
+    best = 0;
+  }
 
   // The silhouette: the filled outline, cropped with a margin.
   fill.setTo(0);
