@@ -34,8 +34,9 @@ public:
   /// is the same whatever the thread count and whatever came from the
   /// cache. Throws MemoryError when the directory is missing, empty, or no
   /// prototype is left. The tables' stride is chosen for the number of
-  /// files first (chooseTableStride): its reason goes to `progress`, or to
-  /// `warn` when the tables may exceed params.table_budget_mb. A load that
+  /// files first (chooseTableStride): its reason goes to `progress` when
+  /// compact tables (a stride above 1) were chosen, and to `warn` when the
+  /// tables may exceed params.table_budget_mb. A load that
   /// takes more than a few seconds sends a
   /// progress line to `progress` every few seconds (files done, built, read
   /// from the cache; called from the loading threads, one at a time).

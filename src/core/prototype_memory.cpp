@@ -79,8 +79,8 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
   const TableStrideChoice stride = chooseTableStride(files.size(), params);
   if (stride.over_budget && warn)
     warn(stride.reason);
-  else if (progress)
-    progress(stride.reason);
+  else if (stride.stride > 1 && params.table_stride == 0 && progress)
+    progress(stride.reason);  // compact tables chosen: say why (exact ones go without a word)
   Params table_params = params;  // what the tables are built with, the stride resolved
   table_params.table_stride = stride.stride;
   checkTableBound(0, files.size(), params.prototype_size, table_params.table_stride);
