@@ -1,5 +1,5 @@
 // amcr::Params from a node's private namespace: first the YAML file named by
-// ~config (cv::FileStorage format, config/amcr.yaml), then every parameter of
+// ~config (amcr::loadParams, config/amcr.yaml), then every parameter of
 // amcr::parameterTable() set individually under the private namespace.
 #pragma once
 
