@@ -1,18 +1,12 @@
-// The parameter file parser: bytes -> a .yaml file -> amcr::loadParams (cv::FileStorage, the
-// range checks, Params::validate). amcr::Error is an accepted answer; any other exception or a
-// sanitizer report is a finding.
+// The parameter file parser: bytes -> a .yaml file -> amcr::loadParams (yaml-cpp, the range
+// checks, Params::validate). amcr::Error is an accepted answer; any other exception, an abort,
+// a hang or a sanitizer report is a finding.
 #include <cstddef>
 #include <cstdint>
 
 #include "amcr/errors.h"
 #include "amcr/params.h"
 #include "fuzz_input.h"
-
-extern "C" int LLVMFuzzerInitialize(int*, char***)
-{
-  amcr_fuzz::setUpOpenCv();
-  return 0;
-}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

@@ -69,6 +69,13 @@ def main():
     write("param_file", "priors.yaml", b"%YAML:1.0\n---\nprototype_priors:\n  disc: 2.0\n  triangle: 0.5\n"
           b"min_support: 3\n")
     write("param_file", "priors_text.yaml", b"%YAML:1.0\n---\nprototype_priors: \"a: 1, b: 0.25\"\n")
+    # Inputs on which OpenCV's YAML reader (before yaml-cpp) never returned (test_fuzz_regressions.cpp),
+    # and YAML forms a parameter file may now hold (an anchor and an alias, a flow map of priors).
+    write("param_file", "hang_document_marker.yaml", b"%YAML:1.\n---s:0\n\")--\nr")
+    write("param_file", "hang_tagged_key.yaml", b"%YAML:1.0\n---\n!p:\n  d: 2.0\nmyn-\nl: 3\n")
+    write("param_file", "hang_indented_end.yaml", b" sigma_w: 2.0\n ...--\n  p_invalid: 0.5\n")
+    write("param_file", "anchor_flow.yaml", b"sigma_w: &w 6\nverify_tolerance: *w\nprototype_priors: {a: 1, b: 0x10}\n"
+          b"optical_flow: false\n")
 
     # image_message: encoding index, width, height, step (u32 LE), is_bigendian, data.
     def message(index, width, height, step, big_endian, data):

@@ -7,7 +7,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "amcr/params.h"
 
@@ -21,21 +21,19 @@ TEST(ConfigFile, HoldsEveryParameterAtItsDefault)
   std::stringstream text;
   text << in.rdbuf();
   ASSERT_NE(text.str().rfind("%YAML", 0), 0u) << kConfigPath << " must not start with OpenCV's header (rosparam refuses it)";
-  // OpenCV's reader wants the header that the file leaves out for rosparam.
-  cv::FileStorage storage("%YAML:1.0\n" + text.str(), cv::FileStorage::READ | cv::FileStorage::MEMORY);
-  ASSERT_TRUE(storage.isOpened()) << "cannot read " << kConfigPath;
+  const YAML::Node file = YAML::Load(text.str());
+  ASSERT_TRUE(file.IsMap()) << "cannot read " << kConfigPath;
   const amcr::Params defaults;
   for (const amcr::ParameterInfo& info : amcr::parameterTable())
   {
-    const cv::FileNode node = storage[info.name];
-    ASSERT_FALSE(node.empty()) << info.name << " is missing from " << kConfigPath;
-    EXPECT_DOUBLE_EQ(static_cast<double>(node), amcr::getParameter(defaults, info.name))
+    ASSERT_TRUE(file[info.name].IsScalar()) << info.name << " is missing from " << kConfigPath;
+    EXPECT_DOUBLE_EQ(file[info.name].as<double>(), amcr::getParameter(defaults, info.name))
         << info.name << " in " << kConfigPath << " differs from the default in params.h";
   }
-  EXPECT_EQ(static_cast<std::string>(storage["likelihood_form"]), amcr::toString(defaults.likelihood_form));
-  EXPECT_EQ(static_cast<std::string>(storage["deviation_space"]), amcr::toString(defaults.deviation_space));
-  EXPECT_TRUE(storage["prototype_priors"].isMap()) << "prototype_priors is missing from " << kConfigPath;
-  EXPECT_EQ(storage["prototype_priors"].size(), defaults.prototype_priors.size());
+  EXPECT_EQ(file["likelihood_form"].as<std::string>(), amcr::toString(defaults.likelihood_form));
+  EXPECT_EQ(file["deviation_space"].as<std::string>(), amcr::toString(defaults.deviation_space));
+  EXPECT_TRUE(file["prototype_priors"].IsMap()) << "prototype_priors is missing from " << kConfigPath;
+  EXPECT_EQ(file["prototype_priors"].size(), defaults.prototype_priors.size());
 }
 
 TEST(ConfigFile, LoadsWithoutError)

@@ -19,9 +19,9 @@ std::string writeFile(const amcr_test::TempDir& dir, const std::string& name, co
   return path;
 }
 
-/// loadParams must refuse the file with a ParameterError naming it (anything else escaping is
-/// what the fuzzer reported).
-void expectParameterErrorNamingTheFile(const std::string& path)
+/// loadParams must refuse the file with a ParameterError naming it and holding `place` (anything
+/// else escaping is what the fuzzer reported).
+void expectParameterErrorNamingTheFile(const std::string& path, const std::string& place = "")
 {
   try
   {
@@ -31,12 +31,14 @@ void expectParameterErrorNamingTheFile(const std::string& path)
   catch (const amcr::ParameterError& e)
   {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(place), std::string::npos) << "not at " << place << ": " << e.what();
   }
 }
 }  // namespace
 
-// fuzz_param_file: OpenCV 4.6's YAML parser throws std::length_error ("basic_string::_M_create"),
-// not cv::Exception, on an empty key after an entry of a nested map; loadParams let it out.
+// fuzz_param_file: OpenCV 4.6's YAML parser (the reader before yaml-cpp) threw std::length_error
+// ("basic_string::_M_create"), not cv::Exception, on an empty key after an entry of a nested map;
+// loadParams let it out.
 TEST(FuzzRegression, ParamFileWithAnEmptyKeyInANestedMap)
 {
   amcr_test::TempDir dir;
@@ -47,25 +49,28 @@ TEST(FuzzRegression, ParamFileWithAnEmptyKeyInANestedMap)
   expectParameterErrorNamingTheFile(writeFile(dir, "found.yaml", std::string(found, sizeof(found) - 1)));
 }
 
-// fuzz_param_file: OpenCV 4.6's YAML reader never returned on these files (a document marker with text
-// after it, then a line with an open quote; a tagged key); loadParams refuses them before OpenCV reads them. Should the
-// guard go, this test hangs instead of failing (CI stops it at its time limit).
-TEST(FuzzRegression, ParamFileOnWhichOpenCVNeverReturns)
+// fuzz_param_file: OpenCV 4.6's YAML reader, which read the parameter file before yaml-cpp, never
+// returned on these files (a document marker with text after it, then a line with an open quote; a
+// tagged key followed by a line that is no entry; an indented top-level map followed by an indented
+// "...--"), and refused the YAML forms around them. Each must now come back at once, refused with
+// the file and the line, or read. Should a reader hang on one again, this test hangs instead of
+// failing (CI stops it at its time limit).
+TEST(FuzzRegression, ParamFileOnWhichOpenCVNeverReturned)
 {
   amcr_test::TempDir dir;
-  expectParameterErrorNamingTheFile(writeFile(dir, "hang.yaml", "%YAML:1.\n---s:0\n\")--\nr"));
-  expectParameterErrorNamingTheFile(writeFile(dir, "two_documents.yaml", "%YAML:1.0\n---\nsigma_w: 5\n---\nsigma_w: 6\n"));
-  expectParameterErrorNamingTheFile(writeFile(dir, "end_marker.yaml", "%YAML:1.0\n---\nsigma_w: 5\n...\n"));
-  // A tagged key followed by a line that is no entry: OpenCV never returned either.
-  expectParameterErrorNamingTheFile(writeFile(dir, "tag.yaml", "%YAML:1.0\n---\n!p:\n  d: 2.0\nmyn-\nl: 3\n"));
-  expectParameterErrorNamingTheFile(writeFile(dir, "anchor.yaml", "%YAML:1.0\n---\nsigma_w: &a 5\n"));
-  expectParameterErrorNamingTheFile(writeFile(dir, "no_entry.yaml", "%YAML:1.0\n---\nsigma_w: 5\nmyn-\n"));
-  // An indented top-level map, then an indented "...--": OpenCV never returned (found by fuzzing).
-  expectParameterErrorNamingTheFile(writeFile(dir, "indented.yaml", " sigma_w: 2.0\n ...--\n  p_invalid: 0.5\n"));
+  expectParameterErrorNamingTheFile(writeFile(dir, "hang.yaml", "%YAML:1.\n---s:0\n\")--\nr"), ":2: ");
+  expectParameterErrorNamingTheFile(writeFile(dir, "tag.yaml", "%YAML:1.0\n---\n!p:\n  d: 2.0\nmyn-\nl: 3\n"), "line 6");
+  expectParameterErrorNamingTheFile(writeFile(dir, "no_entry.yaml", "%YAML:1.0\n---\nsigma_w: 5\nmyn-\n"), ":4: ");
+  expectParameterErrorNamingTheFile(writeFile(dir, "indented.yaml", " sigma_w: 2.0\n ...--\n  p_invalid: 0.5\n"), "line 3");
   const char found_indented[] = "%YAML:1.0\n dic: 2.0\n \x8b\x8b\x8b\x8b\xff" "c: 2.0\n ...--\n  ttriangle: 0.5\n"
                                 "miriangle:miriangle: 0.5\nmt: 3\n";
-  expectParameterErrorNamingTheFile(writeFile(dir, "indented_found.yaml", found_indented));
-  // A marker alone on its line, with spaces or a comment after it, stays valid.
+  expectParameterErrorNamingTheFile(writeFile(dir, "indented_found.yaml", found_indented), "line 5");
+  // A second document is refused; an end marker, an anchor and an indented map are plain YAML.
+  expectParameterErrorNamingTheFile(
+      writeFile(dir, "two_documents.yaml", "%YAML:1.0\n---\nsigma_w: 5\n---\nsigma_w: 6\n"), "line 4");
+  EXPECT_DOUBLE_EQ(amcr::loadParams(writeFile(dir, "end_marker.yaml", "%YAML:1.0\n---\nsigma_w: 5\n...\n")).sigma_w, 5.0);
+  EXPECT_DOUBLE_EQ(amcr::loadParams(writeFile(dir, "anchor.yaml", "%YAML:1.0\n---\nsigma_w: &a 5\n")).sigma_w, 5.0);
+  EXPECT_DOUBLE_EQ(amcr::loadParams(writeFile(dir, "indented_map.yaml", " sigma_w: 2.0\n p_invalid: 0.5\n")).sigma_w, 2.0);
   const std::string valid = writeFile(dir, "valid.yaml", "%YAML:1.0\n---   # parameters\nsigma_w: 6\n");
   EXPECT_DOUBLE_EQ(amcr::loadParams(valid).sigma_w, 6.0);
 }

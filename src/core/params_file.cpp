@@ -1,25 +1,26 @@
-// loadParams: the parameter file read as text (so that a missing header, a
-// read error and the literal text of whole numbers can be handled), then
-// parsed by cv::FileStorage from memory.
+// loadParams: the parameter file read as text (so that a read error and
+// OpenCV's header line are dealt with first), then parsed by yaml-cpp. Every
+// error names the file and the line.
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
-#include <climits>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <vector>
 
-#include <opencv2/core.hpp>
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/yaml.h>
 
 #include "amcr/errors.h"
 #include "amcr/params.h"
 #include "amcr/resource_bounds.h"
+#include "number_text.h"
 
 namespace amcr
 {
@@ -27,7 +28,32 @@ namespace
 {
 namespace fs = std::filesystem;
 
-constexpr long long kLargestExactInteger = 9007199254740992LL;  // 2^53
+/// Collections nested in each other: a parameter file needs 2 (the top map
+/// and prototype_priors). yaml-cpp 0.6 recurses once per level without a
+/// bound (a stack overflow on "[[[[..."), so deeper nesting is refused while
+/// it parses, far below where that is a danger.
+constexpr int kMaxNesting = 8;
+
+/// An error at a place in the file; loadParams puts the file's name and the line in front.
+struct LocatedError
+{
+  YAML::Mark mark;
+  std::string reason;
+};
+
+[[noreturn]] void refuse(const YAML::Node& node, const std::string& reason)
+{
+  throw LocatedError{node.Mark(), reason};
+}
+
+/// The 1-based line of `mark`, within the file's lines (yaml-cpp places an
+/// error at the end of the input on the line after a final newline).
+int lineOf(const YAML::Mark& mark, const std::string& text)
+{
+  const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n')) +
+                    (text.empty() || text.back() == '\n' ? 0 : 1);
+  return std::clamp(mark.line + 1, 1, std::max(1, lines));
+}
 
 std::string readText(const std::string& path)
 {
@@ -58,240 +84,216 @@ std::string readText(const std::string& path)
   return text;
 }
 
-/// "line N: reason" from a cv::FileStorage parse error, whose text is
-/// "<file>(<line>): <reason>" in e.err, or in e.func (OpenCV 4.5 to 4.8 pass
-/// the two the other way round). `added_lines` were put before the file's text.
-std::string parseErrorText(const cv::Exception& e, int added_lines)
+/// OpenCV's header line "%YAML:1.0", which old amcr parameter files start
+/// with, is a directive yaml-cpp refuses: it becomes a comment, so that every
+/// line keeps its number.
+void commentOutOpenCvHeader(std::string& text)
 {
-  for (const std::string& part : {e.err, e.func})
-  {
-    const std::size_t close = part.find("): ");
-    const std::size_t open = close == std::string::npos ? close : part.rfind('(', close);
-    if (open == std::string::npos || open + 1 == close)
-      continue;
-    const std::string digits = part.substr(open + 1, close - open - 1);
-    if (digits.find_first_not_of("0123456789") != std::string::npos)
-      continue;
-    return "line " + std::to_string(std::max(1, std::stoi(digits) - added_lines)) + ": " + part.substr(close + 3);
-  }
-  return e.err.empty() ? std::string(e.what()) : e.err;
+  if (text.compare(0, 6, "%YAML:") == 0)
+    text[0] = '#';
 }
 
-/// The text of a value as written after `key:` in the file, and its line (1-based).
-struct Literal
+/// Follows yaml-cpp's parse events before the tree is built, and stops the
+/// parse (a ParserException at the place) at a second document or at a
+/// collection nested deeper than kMaxNesting: yaml-cpp reports a
+/// collection's start before it recurses into it.
+class StructureCheck : public YAML::EventHandler
 {
-  std::string text;
-  int line = 0;
+public:
+  void OnDocumentStart(const YAML::Mark& mark) override
+  {
+    if (++documents_ > 1)
+      throw YAML::ParserException(mark, "a second document: a parameter file is one document");
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override
+  {
+    open(mark);
+  }
+  void OnSequenceEnd() override { --depth_; }
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override
+  {
+    open(mark);
+  }
+  void OnMapEnd() override { --depth_; }
+
+private:
+  void open(const YAML::Mark& mark)
+  {
+    if (++depth_ > kMaxNesting)
+      throw YAML::ParserException(mark, "lists and maps nested deeper than " + std::to_string(kMaxNesting) +
+                                            " (a parameter file needs 2: the top map and prototype_priors)");
+  }
+  int documents_ = 0;
+  int depth_ = 0;
 };
 
-/// Finds `key:` at the start of a line, after whitespace, '{' or ',' (outside
-/// comments), and returns the value that follows, up to ',', '}', a space or
-/// the end of the line. The last one wins, as a later key overrides.
-Literal findLiteral(const std::vector<std::string>& lines, const std::string& key)
+/// The file's one document; YAML::Exception when it is not valid YAML, not
+/// one document or nested too deep.
+YAML::Node parseDocument(const std::string& text)
 {
-  Literal found;
-  for (std::size_t l = 0; l < lines.size(); ++l)
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  StructureCheck check;
+  while (parser.HandleNextDocument(check))
   {
-    const std::string& line = lines[l];
-    for (std::size_t at = line.find(key); at != std::string::npos; at = line.find(key, at + 1))
-    {
-      if (at > 0 && std::string(" \t{,").find(line[at - 1]) == std::string::npos)
-        continue;
-      std::size_t pos = line.find_first_not_of(" \t", at + key.size());
-      if (pos == std::string::npos || line[pos] != ':')
-        continue;
-      pos = line.find_first_not_of(" \t", pos + 1);
-      if (pos == std::string::npos)
-        continue;
-      const std::size_t end = line.find_first_of(" \t,}", pos);
-      found = {line.substr(pos, end == std::string::npos ? std::string::npos : end - pos), static_cast<int>(l) + 1};
-    }
   }
-  return found;
+  return YAML::Load(text);
 }
 
-/// The file's lines with comments ('#' at the start or after whitespace, outside quotes) removed.
-std::vector<std::string> codeLines(const std::string& text)
+bool isNumericParameter(const std::string& name)
 {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line))
+  const auto& table = parameterTable();
+  return std::any_of(table.begin(), table.end(), [&](const ParameterInfo& info) { return info.name == name; });
+}
+
+/// Runs `read`; a ParameterError it throws is placed at `node`.
+void readAt(const YAML::Node& node, const std::function<void()>& read)
+{
+  try
   {
-    char quote = 0;
-    for (std::size_t i = 0; i < line.size(); ++i)
-    {
-      const char c = line[i];
-      if (quote)
-        quote = c == quote ? 0 : quote;
-      else if (c == '"' || c == '\'')
-        quote = c;
-      else if (c == '#' && (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t'))
-      {
-        line.resize(i);
-        break;
-      }
-    }
-    lines.push_back(line);
+    read();
   }
-  return lines;
-}
-
-/// A number node's value. cv::FileStorage reads a whole number as a 32-bit
-/// int (strtol, then a cast), so 4294967326 would become 30: its text is
-/// read again here, as cv::FileStorage reads it (base 0: 0x1F, 010 octal).
-double numberValue(const cv::FileNode& node, const Literal& literal, const std::string& name)
-{
-  if (!node.isInt())
-    return node.real();
-  const int parsed = static_cast<int>(node);
-  if (literal.text.empty())
-    return parsed;
-  errno = 0;
-  char* end = nullptr;
-  const long long value = std::strtoll(literal.text.c_str(), &end, 0);
-  if (end != literal.text.c_str() + literal.text.size())
-    return parsed;  // not the text the parser read
-  if (errno == ERANGE || value > kLargestExactInteger || value < -kLargestExactInteger)
-    throw ParameterError("parameter '" + name + "' = " + literal.text +
-                         " is beyond 2^53 = 9007199254740992, the largest whole number read exactly");
-  if (static_cast<int>(static_cast<unsigned int>(value)) != parsed)
-    return parsed;  // not the text the parser read
-  return static_cast<double>(value);
-}
-
-void readPriors(const cv::FileNode& node, const std::vector<std::string>& lines, Params& params)
-{
-  params.prototype_priors.clear();
-  for (const cv::FileNode& prior : node)
+  catch (const ParameterError& e)
   {
-    if (!prior.isInt() && !prior.isReal())
-      throw ParameterError("parameter 'prototype_priors': the weight of '" + prior.name() + "' must be a number");
-    const double weight = numberValue(prior, findLiteral(lines, prior.name()), "prototype_priors: " + prior.name());
-    if (!std::isfinite(weight) || weight < 0.0)
-      throw ParameterError("parameter 'prototype_priors': the weight of '" + prior.name() + "' = " +
-                           formatNumber(weight) + " must be a finite number >= 0");
-    params.prototype_priors[prior.name()] = weight;
+    refuse(node, e.what());
   }
 }
 
-void readEntry(const cv::FileNode& node, const std::vector<std::string>& lines, Params& params)
+/// YAML tags ("!!str", "!name") are no part of a parameter file; "?" (plain)
+/// and "!" (quoted) are the tags yaml-cpp gives untagged nodes.
+void refuseTag(const YAML::Node& node)
 {
-  const std::string name = node.name();
-  if (name == "prototype_priors" && node.isMap())
-    readPriors(node, lines, params);
-  else if (node.isString())
-    setParameter(params, name, static_cast<std::string>(node));
-  else if (node.isInt() || node.isReal())
-    setParameter(params, name, numberValue(node, findLiteral(lines, name), name));
+  const std::string& tag = node.Tag();
+  if (!tag.empty() && tag != "?" && tag != "!")
+    refuse(node, "YAML tags ('" + tag + "') are not parameter values");
+}
+
+std::string keyName(const YAML::Node& key)
+{
+  refuseTag(key);
+  if (!key.IsScalar())
+    refuse(key, std::string("a key must be a name, not ") + (key.IsNull() ? "empty" : "a list or a map"));
+  return key.Scalar();
+}
+
+/// A plain scalar that is a number (or, for a numeric parameter, true or
+/// false, as ROS parameters may be) goes to setParameter as a number; any
+/// other scalar, quoted numbers included, as a word.
+void readScalar(const std::string& name, const YAML::Node& value, Params& params)
+{
+  const std::string& text = value.Scalar();
+  if (value.Tag() == "?")
+  {
+    if (const std::optional<double> number = numberFromText(text, name))
+      return setParameter(params, name, *number);
+    const bool is_true = text == "true" || text == "True" || text == "TRUE";
+    if (isNumericParameter(name) && (is_true || text == "false" || text == "False" || text == "FALSE"))
+      return setParameter(params, name, is_true ? 1.0 : 0.0);
+  }
+  setParameter(params, name, text);
+}
+
+void readPriors(const YAML::Node& map, Params& params)
+{
+  std::map<std::string, double> priors;
+  for (const auto& prior : map)
+  {
+    const std::string label = keyName(prior.first);
+    const std::string weight_of = "parameter 'prototype_priors': the weight of '" + label + "'";
+    if (priors.count(label))
+      refuse(prior.first, "parameter 'prototype_priors': '" + label + "' is given twice");
+    refuseTag(prior.second);
+    std::optional<double> weight;
+    if (prior.second.IsScalar() && prior.second.Tag() == "?")
+      readAt(prior.first, [&]() { weight = numberFromText(prior.second.Scalar(), "prototype_priors: " + label); });
+    if (!weight)
+      refuse(prior.first, weight_of + " must be a number");
+    if (!std::isfinite(*weight) || *weight < 0.0)
+      refuse(prior.first, weight_of + " = " + formatNumber(*weight) + " must be a finite number >= 0");
+    priors[label] = *weight;
+  }
+  params.prototype_priors = priors;
+}
+
+void readEntry(const std::string& name, const YAML::Node& value, Params& params)
+{
+  refuseTag(value);
+  if (name == "prototype_priors" && value.IsMap())
+    readPriors(value, params);
+  else if (value.IsScalar())
+    readScalar(name, value, params);
   else
     throw ParameterError("parameter '" + name + "' must be a number or a word (prototype_priors: a map)");
 }
-}  // namespace
 
-/// The YAML that a parameter file may hold, checked line by line before
-/// OpenCV reads it, because OpenCV's YAML reader (4.6) never returns on some
-/// malformed files (found by fuzzing: "%YAML:1.0\n---s:0\n\")--\nr", a
-/// tagged key "!name:" followed by a line "name-", and an indented first
-/// entry followed by an indented "...--"). Allowed: the header on line 1; one
-/// document marker "---" alone on its line; a first entry that is not
-/// indented; top-level lines "name: value" or "name:" (a block map follows,
-/// indented) with a name of
-/// letters, digits and _, or a flow map "{...}"; indented lines of a map or a
-/// flow value. Refused: other directives, a second document, YAML tags,
-/// anchors, aliases and block scalars (!, &, *, |, >), and any other top-level
-/// line. What passes is plain YAML that OpenCV parses or refuses with a line.
-void checkLineForms(const std::vector<std::string>& lines, const std::string& yaml_path)
+/// A parameter read from the file, and the line of its key.
+struct ReadEntry
 {
-  static const std::string kYamlOnlySigils = "!&*|>%@`";
-  bool started = false;  // the document marker was seen
-  bool opened = false;   // an entry was seen
-  for (std::size_t l = 0; l < lines.size(); ++l)
+  std::string name;
+  YAML::Mark mark;
+};
+
+/// Reads the top-level map into `params`; an empty document keeps every value.
+std::vector<ReadEntry> readEntries(const YAML::Node& root, Params& params)
+{
+  std::vector<ReadEntry> read;
+  if (root.IsNull())
+    return read;
+  refuseTag(root);
+  if (!root.IsMap())
+    refuse(root, "the parameter file is not a map of name: value");
+  std::set<std::string> seen;
+  for (const auto& entry : root)
   {
-    const std::string& line = lines[l];  // comments removed
-    const std::string where = "cannot parse the parameter file '" + yaml_path + "', line " + std::to_string(l + 1) + ": ";
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || (l == 0 && line.compare(0, 5, "%YAML") == 0))
-      continue;
-    if (line.compare(0, 3, "---") == 0 || line.compare(0, 3, "...") == 0)
-    {
-      if (started || line[0] == '.')
-        throw ParameterError(where + "a second document marker ('" + line.substr(0, 3) + "'): a parameter file is one document");
-      if (line.find_first_not_of(" \t\r", 3) != std::string::npos)
-        throw ParameterError(where + "the document marker '---' must stand alone on its line");
-      started = true;
-      continue;
-    }
-    // The top level starts at column 1: OpenCV never returned on an indented
-    // top-level map followed by an indented "...--" (found by fuzzing).
-    if (!opened && first != 0)
-      throw ParameterError(where + "the first entry must not be indented: '" + line + "'");
-    opened = true;
-    const std::size_t colon = line.find(':', first);
-    if (first == 0 && line[0] != '{')
-    {
-      std::size_t name_end = 0;
-      while (name_end < line.size() && (std::isalnum(static_cast<unsigned char>(line[name_end])) || line[name_end] == '_'))
-        ++name_end;
-      const std::size_t after = line.find_first_not_of(" \t", name_end);
-      if (name_end == 0 || std::isdigit(static_cast<unsigned char>(line[0])) || after == std::string::npos || line[after] != ':')
-        throw ParameterError(where + "expected 'name: value' (a name of letters, digits and _), not '" + line + "'");
-    }
-    const std::size_t value = colon == std::string::npos ? first : line.find_first_not_of(" \t\r", colon + 1);
-    if (kYamlOnlySigils.find(line[first]) != std::string::npos ||
-        (value != std::string::npos && kYamlOnlySigils.find(line[value]) != std::string::npos))
-      throw ParameterError(where + "YAML tags, anchors, aliases, block scalars and directives (" + kYamlOnlySigils +
-                           ") are not parameter values: '" + line + "'");
+    const std::string name = keyName(entry.first);
+    readAt(entry.first, [&]() {
+      if (!seen.insert(name).second)
+        throw ParameterError("parameter '" + name + "' is given twice");
+      readEntry(name, entry.second, params);
+    });
+    read.push_back({name, entry.first.Mark()});
   }
+  return read;
 }
+
+/// "file:line: " of the last entry read that `message` names ('name'), or "file: ".
+std::string placeOfNamedEntry(const std::string& path, const std::string& text, const std::vector<ReadEntry>& read,
+                              const std::string& message)
+{
+  for (auto entry = read.rbegin(); entry != read.rend(); ++entry)
+  {
+    if (message.find("'" + entry->name + "'") != std::string::npos)
+      return path + ":" + std::to_string(lineOf(entry->mark, text)) + ": ";
+  }
+  return path + ": ";
+}
+}  // namespace
 
 Params loadParams(const std::string& yaml_path, Params params)
 {
   std::string text = readText(yaml_path);
-  // cv::FileStorage wants the OpenCV header; a file without it gets one
-  // (and the line numbers of its errors are counted without it).
-  const bool has_header = text.compare(0, 5, "%YAML") == 0;
-  const int added_lines = has_header ? 0 : 1;
-  const std::vector<std::string> lines = codeLines(text);
-  checkLineForms(lines, yaml_path);
-  if (!has_header)
-    text = "%YAML:1.0\n" + text;
-  cv::FileStorage storage;
+  commentOutOpenCvHeader(text);
+  std::vector<ReadEntry> read;
   try
   {
-    if (!storage.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML))
-      throw ParameterError("cannot parse the parameter file '" + yaml_path + "'");
+    read = readEntries(parseDocument(text), params);
   }
-  catch (const cv::Exception& e)
+  catch (const LocatedError& e)
   {
-    throw ParameterError("cannot parse the parameter file '" + yaml_path + "', " + parseErrorText(e, added_lines));
+    throw ParameterError(yaml_path + ":" + std::to_string(lineOf(e.mark, text)) + ": " + e.reason);
   }
-  catch (const std::exception& e)  // OpenCV's YAML parser also throws std::length_error
+  catch (const YAML::Exception& e)
+  {
+    throw ParameterError("cannot parse the parameter file '" + yaml_path + "', line " +
+                         std::to_string(lineOf(e.mark, text)) + ": " + e.msg);
+  }
+  catch (const std::exception& e)  // yaml-cpp may throw the standard library's exceptions too
   {
     throw ParameterError("cannot parse the parameter file '" + yaml_path + "': malformed YAML (" + e.what() + ")");
-  }
-  const cv::FileNode root = storage.root();
-  if (root.empty() || root.isNone())
-  {
-    params.validate();  // an empty file: every value stays
-    return params;
-  }
-  if (!root.isMap())
-    throw ParameterError("the parameter file '" + yaml_path + "' is not a map of name: value");
-  std::set<std::string> seen;
-  for (const cv::FileNode& node : root)
-  {
-    try
-    {
-      if (!seen.insert(node.name()).second)
-        throw ParameterError("parameter '" + node.name() + "' is given twice");
-      readEntry(node, lines, params);
-    }
-    catch (const ParameterError& e)
-    {
-      const Literal literal = findLiteral(lines, node.name());
-      throw ParameterError(yaml_path + (literal.line ? ":" + std::to_string(literal.line) : "") + ": " + e.what());
-    }
   }
   try
   {
@@ -299,7 +301,7 @@ Params loadParams(const std::string& yaml_path, Params params)
   }
   catch (const ParameterError& e)
   {
-    throw ParameterError(yaml_path + ": " + e.what());
+    throw ParameterError(placeOfNamedEntry(yaml_path, text, read, e.what()) + e.what());
   }
   return params;
 }

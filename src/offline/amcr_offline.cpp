@@ -68,14 +68,7 @@ amcr::Params loadConfiguredParams(const RunnerOptions& options)
     std::error_code error;
     if (!std::filesystem::is_regular_file(options.config, error))
       throw std::runtime_error("config file '" + options.config + "' does not exist or is not a file");
-    try
-    {
-      params = amcr::loadParams(options.config);
-    }
-    catch (const cv::Exception& e)
-    {
-      throw std::runtime_error("cannot parse config file '" + options.config + "': " + e.err);
-    }
+    params = amcr::loadParams(options.config);  // a ParameterError names the file and the line
   }
   if (options.has_seed)
     params.seed = options.seed;

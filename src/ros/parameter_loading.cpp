@@ -6,8 +6,6 @@
 #include <map>
 #include <system_error>
 
-#include <opencv2/core.hpp>
-
 #include "amcr/errors.h"
 
 namespace amcr_ros
@@ -37,14 +35,7 @@ amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::stri
     std::error_code error;
     if (!std::filesystem::is_regular_file(config, error))
       throw amcr::ParameterError("~config: file '" + config + "' does not exist or is not a file");
-    try
-    {
-      params = amcr::loadParams(config, params);
-    }
-    catch (const cv::Exception& e)
-    {
-      throw amcr::ParameterError("~config: cannot parse '" + config + "': " + e.err);
-    }
+    params = amcr::loadParams(config, params);  // a ParameterError names the file and the line
     if (notes)
       notes->push_back("config file " + config);
   }

@@ -1,7 +1,8 @@
 // amcr::Params from a node's private namespace: first the YAML file named by
-// ~config (config/amcr.yaml), then every parameter of amcr::parameterTable()
-// set individually under the private namespace. A ROS integer parameter is
-// 32-bit (XML-RPC): ~seed may also be a string of digits, for any 64-bit seed.
+// ~config (amcr::loadParams, config/amcr.yaml), then every parameter of
+// amcr::parameterTable() set individually under the private namespace. A ROS
+// integer parameter is 32-bit (XML-RPC): ~seed may also be a string of
+// digits, for any 64-bit seed.
 #pragma once
 
 #include <string>
