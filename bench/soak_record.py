@@ -70,7 +70,7 @@ class Recorder:
         self.target = target
         self.lock = threading.Lock()
         self.answers = []        # (receipt time, latency ms, processing ms, target reported, others)
-        self.history = []        # (receipt time, target reported) of every answer
+        self.history = []        # (receipt time, target reported, latency ms) of every answer
         self.all_latency = []    # after warm-up, for the run's percentiles
         self.all_processing = []
         self.published = 0
@@ -94,7 +94,7 @@ class Recorder:
                bool(labels - {self.target}))
         with self.lock:
             self.answers.append(row)
-            self.history.append((now, row[3]))
+            self.history.append((now, row[3], row[1]))
             self.answered_total += 1
             self.last_answer = time.monotonic()
             if self.warm:
@@ -116,7 +116,17 @@ class Recorder:
     def answers_between(self, start, end):
         """The answers received in [start, end) (wall-clock seconds)."""
         with self.lock:
-            return [a for a in self.history if start <= a[0] < end]  # (receipt time, target reported)
+            return [a for a in self.history if start <= a[0] < end]  # (receipt time, target reported, latency ms)
+
+    def window(self, start, end):
+        """The output between two wall-clock times: answers, rate and latency of the answers received."""
+        answers = self.answers_between(start, end)
+        latency = [a[2] for a in answers]
+        seconds = max(end - start, 1e-9)
+        return {"seconds": round(seconds, 2), "answers": len(answers), "rate_hz": round(len(answers) / seconds, 1),
+                "latency_median_ms": rounded(statistics.median(latency) if latency else None),
+                "latency_p95_ms": rounded(percentile(latency, 0.95)),
+                "latency_max_ms": rounded(max(latency, default=None))}
 
     def take_interval(self, t_s, seconds, probe):
         """One row of the CSV: the interval since the previous call."""

@@ -8,6 +8,49 @@ import subprocess
 import soak_record
 import soak_scene
 
+SECONDS_BEFORE_A_CALL = 5.0  # the output a call's window is compared with
+MIN_FRAMES_TO_JUDGE = 20     # fewer answers expected while a call ran: too short a window to judge its rate by
+
+
+def add_output_around_calls(outcomes, recorder):
+    """Adds to each call the output while it was under way ("output_during") and in the seconds before it
+    ("output_before"): answers, rate, latency; the relative change of the rate; and whether the rate is
+    judged (a reload, long enough for the answers expected in it)."""
+    for o in outcomes:
+        start, end = o["wall"]
+        before = recorder.window(start - SECONDS_BEFORE_A_CALL, start)
+        during = recorder.window(start, end)
+        rate_before = before["answers"] / SECONDS_BEFORE_A_CALL
+        rate_during = during["answers"] / max(end - start, 1e-9)
+        o["output_before"], o["output_during"] = before, during
+        o["rate_change"] = round((rate_during - rate_before) / rate_before, 3) if rate_before > 0 else None
+        o["rate_judged"] = bool(o["reloads"] and o["rate_change"] is not None
+                                and rate_before * (end - start) >= MIN_FRAMES_TO_JUDGE)
+
+
+def reload_rate_failures(outcomes, tolerance):
+    """The reloads during which the output rate fell more than `tolerance` below the rate before them."""
+    failures = []
+    for o in outcomes:
+        if o.get("rate_judged") and o["rate_change"] < -tolerance:
+            failures.append("t = %g s, %s: output %.1f Hz while it ran (%.2f s), %+.0f %% against the %.1f Hz of "
+                            "the %g s before (bound -%g %%)" % (
+                                o["t_s"], o["call"], o["output_during"]["rate_hz"], o["seconds"],
+                                100.0 * o["rate_change"], o["output_before"]["rate_hz"], SECONDS_BEFORE_A_CALL,
+                                100.0 * tolerance))
+    return failures
+
+
+def around_line(o):
+    """One call's output before it and while it ran, for the printed summary."""
+    b, d = o["output_before"], o["output_during"]
+    change = "-" if o["rate_change"] is None else "%+.0f %%" % (100.0 * o["rate_change"])
+    return ("t=%5.1f s  %-36s %5.2f s: %s -> %s Hz (%s%s); latency median %s -> %s ms, p95 %s -> %s ms, max %s -> %s ms"
+            % (o["t_s"], o["call"], o["seconds"], b["rate_hz"], d["rate_hz"], change,
+               "" if o["rate_judged"] else ", too short to judge" if o["reloads"] else ", not judged",
+               b["latency_median_ms"], d["latency_median_ms"],
+               b["latency_p95_ms"], d["latency_p95_ms"], b["latency_max_ms"], d["latency_max_ms"]))
+
 
 def verdict(rows, outcomes, warm_rows, args, died, stalled):
     """The reasons the run failed (empty: it passed) and the RSS figures of the bound."""
@@ -32,6 +75,7 @@ def verdict(rows, outcomes, warm_rows, args, died, stalled):
     for o in outcomes:
         if not o["as_expected"]:
             failures.append("t = %g s, %s: %s" % (o["t_s"], o["call"], o["outcome"]))
+    failures += reload_rate_failures(outcomes, args.reload_rate_tolerance)
     return failures, rss
 
 
@@ -41,7 +85,8 @@ def summary(args, target, rows, warm_rows, recorder, outcomes, rss, failures, lo
     seconds = args.interval * len(warm_rows) or 1.0
     figures = {
         "settings": {"minutes": args.minutes, "rate_hz": args.rate, "size": args.size, "process": args.process,
-                     "interval_s": args.interval, "out": args.out, "prototypes": sorted(soak_scene.PROTOTYPES), "target": target},
+                     "interval_s": args.interval, "out": args.out, "prototypes": sorted(soak_scene.PROTOTYPES), "target": target,
+                     "reload_rate_tolerance": args.reload_rate_tolerance},
         "load_average_before_after": loads,
         "input_rate_achieved_hz": round(achieved_rate, 1),
         "published": recorder.published_total, "answered": recorder.answered_total,
@@ -81,6 +126,11 @@ def summary(args, target, rows, warm_rows, recorder, outcomes, rss, failures, lo
     print("diagnostics at the end: %s" % ", ".join("%s %s" % (k, recorder.diagnostics.get(k)) for k in (
         "frames received", "frames processed", "frames skipped (bad input)", "frames dropped (sequence gaps)")))
     print("calls: %d, %d as expected" % (len(outcomes), sum(o["as_expected"] for o in outcomes)))
+    print("output around the calls that rebuild (the %g s before -> while the call ran; a reload's rate judged: no "
+          "more than %g %% below):" % (SECONDS_BEFORE_A_CALL, 100.0 * args.reload_rate_tolerance))
+    for o in outcomes:
+        if o.get("rebuilds"):
+            print("  " + around_line(o))
     print("verdict: %s" % ("PASSED" if not failures else "FAILED\n  " + "\n  ".join(failures)))
     return figures
 
@@ -115,6 +165,23 @@ def markdown(figures):
         "", "## Calls", "", "| t (s) | call | as expected | outcome | took (s) |", "|---|---|---|---|---|"]
     lines += ["| %s | %s | %s | %s | %s |" % (c["t_s"], c["call"], "yes" if c["as_expected"] else "**no**",
                                              c["outcome"].replace("|", "/"), c["seconds"]) for c in figures["calls"]]
+    lines += ["", "## Output around the calls that rebuild", "",
+              "The %g s before each call against the time it ran. A reload's rate is judged (at most %g %% below) "
+              "when at least %d answers were due while it ran; a reconfiguration's is not (it changes the work "
+              "per frame)." % (SECONDS_BEFORE_A_CALL, 100.0 * s.get("reload_rate_tolerance", 0.1),
+                               MIN_FRAMES_TO_JUDGE), "",
+              "| t (s) | call | took (s) | rate before / during (Hz) | change | latency median before / during (ms) "
+              "| p95 | max | judged |", "|---|---|---|---|---|---|---|---|---|"]
+    for c in figures["calls"]:
+        if not c.get("rebuilds"):
+            continue
+        b, d = c["output_before"], c["output_during"]
+        lines.append("| %s | %s | %s | %s / %s | %s | %s / %s | %s / %s | %s / %s | %s |" % (
+            c["t_s"], c["call"], c["seconds"], b["rate_hz"], d["rate_hz"],
+            "-" if c["rate_change"] is None else "%+.0f %%" % (100.0 * c["rate_change"]),
+            b["latency_median_ms"], d["latency_median_ms"], b["latency_p95_ms"], d["latency_p95_ms"],
+            b["latency_max_ms"], d["latency_max_ms"],
+            "yes" if c["rate_judged"] else "too short" if c["reloads"] else "no"))
     cols = ["t_s", "rss_mb", "cpu_percent", "input_hz", "output_hz", "latency_median_ms", "latency_p95_ms",
             "latency_max_ms", "processing_median_ms", "unanswered", "reported_share", "load_1min"]
     lines += ["", "## Per interval", "", "| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]

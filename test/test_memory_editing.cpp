@@ -2,11 +2,14 @@
 // PrototypeMemory::remove and isPrefixOf, and Recognizer::extendMemory, which
 // adds prototypes to a running filter without a reset. End to end: a shape the
 // memory does not hold is cut from a frame (amcr::cutShape), taught, and then
-// recognized in frames that show it under another pose.
+// recognized in frames that show it under another pose. A memory made ready
+// on another thread while the recognizer runs (amcr::FilterMemory) is swapped
+// in with the same outcome as one built by the swap itself.
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -145,5 +148,64 @@ TEST(MemoryEditing, AMemoryThatDoesNotExtendIsRefusedAndTheFilterGoesOn)
   EXPECT_THROW(recognizer.extendMemory(nullptr), amcr::MemoryError);
   EXPECT_EQ(&recognizer.memory(), memory.get());
   EXPECT_EQ(recognizer.step(frames[2]).iteration, 3);
+}
+
+amcr_test::Scene arrowScene()
+{
+  amcr_test::Scene scene;
+  scene.objects = {{ShapeId::kArrow, amcr_test::makeAffine(amcr_test::prototypeCentre(), {320, 240}, 0.2, 1.0, 1.0, 0.0)}};
+  return scene;
+}
+
+// One recognizer builds the new memory's indexes in setMemory; the other gets them made ready on a
+// thread while it goes on recognizing. From the swap on, both give the same output.
+TEST(MemoryEditing, AMemoryMadeReadyOnAnotherThreadGivesTheSameOutput)
+{
+  const amcr::Params params = testParams();
+  auto memory = amcr_test::drawnMemory({ShapeId::kCrescent, ShapeId::kStar}, params);
+  auto next = amcr_test::drawnMemory({ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar}, params);
+  amcr::Recognizer built_in_the_swap(params, memory), made_ready(params, memory);
+  const std::vector<cv::Mat> frames = amcr_test::renderSequence(arrowScene(), 12);
+
+  std::unique_ptr<amcr::FilterMemory> ready;
+  std::thread building([&] { ready = std::make_unique<amcr::FilterMemory>(params, next); });
+  for (int k = 0; k < 3; ++k)
+    made_ready.step(frames[k]);  // meanwhile
+  building.join();
+  built_in_the_swap.setMemory(next);
+  const amcr::FilterMemory replaced = made_ready.setMemory(std::move(*ready));
+  EXPECT_EQ(replaced.memory().get(), memory.get()) << "the replaced memory is handed back";
+  EXPECT_EQ(&made_ready.memory(), next.get());
+
+  for (int k = 3; k < 12; ++k)
+  {
+    const amcr::RecognitionResult a = built_in_the_swap.step(frames[k]), b = made_ready.step(frames[k]);
+    EXPECT_EQ(a.iteration, b.iteration);
+    ASSERT_EQ(a.objects.size(), b.objects.size()) << "frame " << k;
+    for (std::size_t i = 0; i < a.objects.size(); ++i)
+    {
+      EXPECT_EQ(a.objects[i].label, b.objects[i].label);
+      EXPECT_EQ(a.objects[i].score, b.objects[i].score);
+    }
+  }
+}
+
+// A memory made ready for other parameters would not fit the filter: refused, and the filter goes on.
+TEST(MemoryEditing, AMemoryMadeReadyForOtherParametersIsRefused)
+{
+  const amcr::Params params = testParams();
+  auto memory = amcr_test::drawnMemory({ShapeId::kArrow, ShapeId::kCrescent}, params);
+  amcr::Recognizer recognizer(params, memory);
+  const std::vector<cv::Mat> frames = amcr_test::renderSequence(arrowScene(), 2);
+  recognizer.step(frames[0]);
+
+  amcr::Params other = params;
+  other.sigma_w = 7.5;
+  auto extended = std::make_shared<amcr::PrototypeMemory>(*memory);
+  extended->add("star", amcr_test::drawPrototype(ShapeId::kStar), params);
+  EXPECT_THROW(recognizer.setMemory(amcr::FilterMemory(other, extended)), amcr::ParameterError);
+  EXPECT_THROW(recognizer.extendMemory(amcr::FilterMemory(other, extended)), amcr::ParameterError);
+  EXPECT_EQ(&recognizer.memory(), memory.get());
+  EXPECT_EQ(recognizer.step(frames[1]).iteration, 2);
 }
 }  // namespace

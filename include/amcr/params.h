@@ -236,6 +236,10 @@ std::string formatPriors(const std::map<std::string, double>& priors);
 /// Reads one numeric parameter by name.
 double getParameter(const Params& params, const std::string& name);
 
+/// True when every parameter of `a` equals `b`'s (numbers, forms, priors,
+/// table_cache_dir).
+bool sameParameters(const Params& a, const Params& b);
+
 /// A number for messages: whole numbers in full (4294967326), others with
 /// up to 15 digits.
 std::string formatNumber(double value);

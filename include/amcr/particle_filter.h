@@ -26,6 +26,7 @@
 #include "amcr/discriminative_attention.h"
 #include "amcr/discriminative_places.h"
 #include "amcr/exploration_policy.h"
+#include "amcr/filter_memory.h"
 #include "amcr/motion_model.h"
 #include "amcr/observation_model.h"
 #include "amcr/params.h"
@@ -72,6 +73,8 @@ public:
   /// (MemoryError otherwise); ParameterError from the prior (PrototypePrior).
   /// The filter is empty until seed().
   ParticleFilter(const Params& params, std::shared_ptr<const PrototypeMemory> memory);
+  /// The same with the memory made ready beforehand (its parameters are the filter's).
+  explicit ParticleFilter(FilterMemory memory);
 
   /// Replaces the exploration policy F (ParameterError when null).
   void setPolicy(std::unique_ptr<ExplorationPolicy> policy);
@@ -79,6 +82,11 @@ public:
   /// Swaps the memory (as the constructor checks it) and empties the filter.
   /// On an error the filter keeps its memory.
   void setMemory(std::shared_ptr<const PrototypeMemory> memory);
+  /// The same with a memory made ready beforehand: no build, only the swap.
+  /// ParameterError when it was built for other parameters than the
+  /// filter's. Returns the memory it replaced (the caller frees it where
+  /// that costs nobody: not under a lock).
+  FilterMemory setMemory(FilterMemory memory);
 
   /// Swaps in a memory that extends the current one (prototypes added after
   /// the current ones, PrototypeMemory::isPrefixOf): the particles stay,
@@ -87,6 +95,10 @@ public:
   /// iteration on. MemoryError when `memory` does not extend the current
   /// one; on an error the filter keeps its memory.
   void extendMemory(std::shared_ptr<const PrototypeMemory> memory);
+  /// The same with a memory made ready beforehand (its prior and indexes
+  /// are built already); ParameterError as setMemory(FilterMemory). Returns
+  /// the memory it replaced.
+  FilterMemory extendMemory(FilterMemory memory);
 
   /// Empties the filter and re-seeds the generator with params.seed.
   void reset();
@@ -228,20 +240,10 @@ private:
   /// KLD-sampling (Fox 2003): how many M-particles the next generation of
   /// a V-particle needs, given `picks` drawn from the current one.
   int kldCount(const std::vector<int>& picks, std::size_t begin, std::vector<std::uint64_t>& bins) const;
-  /// Checks `memory` and swaps it in with its prior and index (no reset); on an error nothing changes.
-  void swapMemory(std::shared_ptr<const PrototypeMemory> memory);
-  /// The proposal index of `memory` under `prior` (null when index_share
-  /// is 0); its warnings go to `warnings`.
-  std::shared_ptr<const ProposalIndex> buildIndex(const PrototypeMemory& memory, const PrototypePrior& prior,
-                                                  std::vector<std::string>& warnings) const;
-  /// The radial-profile index of `memory` under `prior` (null when
-  /// index_share is 0 or profile_index is off); its warnings go to `warnings`.
-  std::shared_ptr<const ProfileIndex> buildProfileIndex(const PrototypeMemory& memory, const PrototypePrior& prior,
-                                                        std::vector<std::string>& warnings) const;
-  /// The look-alike pairs of `memory` under `prior` (lookAlikes()), from
-  /// the table cache when it holds them; its warnings go to `warnings`.
-  std::shared_ptr<const DiscriminativePlaces> buildPlaces(const PrototypeMemory& memory, const PrototypePrior& prior,
-                                                          std::vector<std::string>& warnings) const;
+  /// Swaps `memory`'s parts with the filter's own (no reset): afterwards
+  /// `memory` holds the replaced ones. ParameterError, before anything
+  /// changes, when it was built for other parameters.
+  void swapMemory(FilterMemory& memory);
   /// ray_correspondence affine: gives M-particle `index` a view shape,
   /// frontal or drawn (corrected_scan.h); true when it is not frontal.
   bool drawShape(MParticleSet& set, std::size_t index, Rng& rng) const;

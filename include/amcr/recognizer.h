@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 
 #include "amcr/exploration_policy.h"
+#include "amcr/filter_memory.h"
 #include "amcr/filter_view.h"
 #include "amcr/flow_tracker.h"
 #include "amcr/frame_budget.h"
@@ -37,6 +38,9 @@ public:
   /// Validates `params` (ParameterError) and takes a memory that must not be
   /// empty (MemoryError). The random generator is seeded with params.seed.
   Recognizer(const Params& params, std::shared_ptr<const PrototypeMemory> memory);
+  /// The same with the memory made ready beforehand (filter_memory.h), for
+  /// its parameters: only the swap remains to do here.
+  explicit Recognizer(FilterMemory memory);
 
   /// Replaces the exploration policy (the default reflects at edges).
   void setPolicy(std::unique_ptr<ExplorationPolicy> policy);
@@ -47,11 +51,18 @@ public:
 
   /// Swaps the memory and resets the filter.
   void setMemory(std::shared_ptr<const PrototypeMemory> memory);
+  /// The same with a memory made ready beforehand for this recognizer's
+  /// parameters (ParameterError otherwise): a swap, no build, so a caller
+  /// can build it on another thread while this one recognizes. Returns the
+  /// memory it replaced, to be freed where that costs nobody.
+  FilterMemory setMemory(FilterMemory memory);
 
   /// Swaps in a memory that extends the current one (a prototype taught at
   /// runtime, ParticleFilter::extendMemory) without a reset: particles,
   /// tracks and the optical flow go on. MemoryError otherwise (nothing changes).
   void extendMemory(std::shared_ptr<const PrototypeMemory> memory);
+  /// The same with a memory made ready beforehand, as setMemory(FilterMemory).
+  FilterMemory extendMemory(FilterMemory memory);
 
   /// Forgets everything: particles are re-seeded at the next step, the
   /// generator is re-seeded with params.seed, the optical flow restarts, the

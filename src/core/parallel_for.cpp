@@ -2,14 +2,39 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <exception>
 #include <mutex>
+#include <thread>
 
 #include <opencv2/core/utility.hpp>
 
 namespace amcr
 {
-int resolveThreads(int num_threads) { return num_threads > 0 ? num_threads : std::max(1, cv::getNumThreads()); }
+namespace
+{
+thread_local int single_thread_scopes = 0;  // SingleThreadScopes alive on this thread
+}  // namespace
+
+SingleThreadScope::SingleThreadScope() { ++single_thread_scopes; }
+
+SingleThreadScope::~SingleThreadScope() { --single_thread_scopes; }
+
+int resolveThreads(int num_threads)
+{
+  if (single_thread_scopes > 0)
+    return 1;
+  return num_threads > 0 ? num_threads : std::max(1, cv::getNumThreads());
+}
+
+void startWorkerThreads()
+{
+  // A piece per thread that lasts long enough for every worker to be asked for.
+  const int threads = resolveThreads(0);
+  cv::parallel_for_(
+      cv::Range(0, threads), [](const cv::Range&) { std::this_thread::sleep_for(std::chrono::milliseconds(2)); },
+      threads);
+}
 
 void parallelFor(int count, int threads, const std::function<void(int)>& body)
 {
@@ -38,7 +63,7 @@ void parallelFor(int count, int threads, const std::function<void(int)>& body)
       }
     }
   };
-  const int workers = std::min(count, std::max(1, threads));
+  const int workers = single_thread_scopes > 0 ? 1 : std::min(count, std::max(1, threads));
   if (workers == 1)
     work();
   else

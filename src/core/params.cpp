@@ -349,6 +349,16 @@ double getParameter(const Params& params, const std::string& name)
   return p->get(params);
 }
 
+bool sameParameters(const Params& a, const Params& b)
+{
+  for (const ParameterInfo& info : parameterTable())
+    if (getParameter(a, info.name) != getParameter(b, info.name))
+      return false;
+  return a.likelihood_form == b.likelihood_form && a.deviation_space == b.deviation_space &&
+         a.ray_correspondence == b.ray_correspondence && a.prototype_priors == b.prototype_priors &&
+         a.table_cache_dir == b.table_cache_dir;
+}
+
 std::string toString(LikelihoodForm form) { return form == LikelihoodForm::kPaper ? "paper" : "mixture"; }
 
 std::string toString(DeviationSpace space) { return space == DeviationSpace::kImage ? "image" : "prototype"; }

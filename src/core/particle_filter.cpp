@@ -12,104 +12,38 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amcr/corrected_scan.h"
-#include "amcr/discriminative_places_cache.h"
 #include "amcr/errors.h"
 #include "amcr/heading_proposal.h"
 #include "amcr/parallel_for.h"
 #include "amcr/ray_directions.h"
-#include "amcr/resource_bounds.h"
-#include "amcr/table_cache.h"
 
 namespace amcr
 {
 namespace
 {
 constexpr float kMinSeedRayLength = 4.f;  // px: shorter rays at a seed place mean texture, not a region
-
-std::shared_ptr<const PrototypeMemory> checkedMemory(std::shared_ptr<const PrototypeMemory> memory)
-{
-  if (!memory || memory->empty())
-    throw MemoryError("the recognizer needs a prototype memory with at least one prototype");
-  return memory;
-}
-
-/// The prior, once the M-particles it asks for are within kMaxMParticles.
-PrototypePrior checkedPrior(const PrototypeMemory& memory, const Params& params)
-{
-  PrototypePrior prior(memory, params);
-  if (params.m_particles_per_v > 0)
-    return prior;  // the budget was checked with the parameters
-  const std::int64_t active = static_cast<std::int64_t>(prior.slots().size()) / params.m_particles_per_prototype;
-  checkParticleBound(params.num_v_particles, static_cast<std::int64_t>(prior.slots().size()),
-                     std::to_string(params.m_particles_per_prototype) + " per prototype x " + std::to_string(active) +
-                         " prototypes of non-zero prior");
-  return prior;
-}
 }  // namespace
 
 ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const PrototypeMemory> memory)
-  : params_(params)
-  , memory_(checkedMemory(std::move(memory)))
-  , prior_(checkedPrior(*memory_, params_))
-  , policy_(std::make_unique<ReflectAtEdgesPolicy>(params.v_step, params.reflection_jitter))
-  , discriminator_(params.v_step, params.discriminative_min_gain)
-  , observation_(params)
-  , motion_(params)
-  , rng_(params.seed)
+  : ParticleFilter(FilterMemory(params, std::move(memory)))
 {
-  index_ = buildIndex(*memory_, prior_, index_warnings_);
-  profile_index_ = buildProfileIndex(*memory_, prior_, index_warnings_);
-  places_ = buildPlaces(*memory_, prior_, index_warnings_);
+}
+
+ParticleFilter::ParticleFilter(FilterMemory memory)
+  : params_(memory.params_)
+  , memory_(std::move(memory.memory_))
+  , prior_(std::move(memory.prior_))
+  , policy_(std::make_unique<ReflectAtEdgesPolicy>(params_.v_step, params_.reflection_jitter))
+  , discriminator_(params_.v_step, params_.discriminative_min_gain)
+  , observation_(params_)
+  , motion_(params_)
+  , rng_(params_.seed)
+  , index_(std::move(memory.index_))
+  , profile_index_(std::move(memory.profile_index_))
+  , places_(std::move(memory.places_))
+  , index_warnings_(std::move(memory.warnings_))
+{
   reset();
-}
-
-std::shared_ptr<const ProposalIndex> ParticleFilter::buildIndex(const PrototypeMemory& memory,
-                                                                const PrototypePrior& prior,
-                                                                std::vector<std::string>& warnings) const
-{
-  if (params_.index_share <= 0.0)
-    return nullptr;
-  // The k-d tree is cached beside the tables (table_cache_dir); the memory's
-  // load has already reported a cache that cannot be used.
-  const TableCache cache(tableCacheDirectory(params_.table_cache_dir));
-  return std::make_shared<const ProposalIndex>(
-      memory, params_.index_stride, prior.activeMask(),
-      [&warnings](const std::string& line) { warnings.push_back(line); }, cache.readable() ? &cache : nullptr,
-      static_cast<std::size_t>(params_.index_max_entries));
-}
-
-std::shared_ptr<const ProfileIndex> ParticleFilter::buildProfileIndex(const PrototypeMemory& memory,
-                                                                      const PrototypePrior& prior,
-                                                                      std::vector<std::string>& warnings) const
-{
-  if (params_.index_share <= 0.0 || !params_.profile_index)
-    return nullptr;
-  // One entry per place (the 8-ray index holds one per place and heading):
-  // at half the 8-ray index's stride it is still the smaller.
-  auto index = std::make_shared<const ProfileIndex>(memory, std::max(1, params_.index_stride / 2), prior.activeMask());
-  for (const std::string& label : index->leftOut())
-    warnings.push_back("prototype '" + label + "' is left out of the radial-profile index: too few of its pixels see "
-                       "an edge in nearly every direction within the table's reach; the 8-ray index still seeds it");
-  return index;
-}
-
-std::shared_ptr<const DiscriminativePlaces> ParticleFilter::buildPlaces(const PrototypeMemory& memory,
-                                                                       const PrototypePrior& prior,
-                                                                       std::vector<std::string>& warnings) const
-{
-  const bool moves_to_places = params_.discriminative_moves && params_.discriminative_places;
-  if (!moves_to_places && params_.competing_fits <= 0)
-    return nullptr;
-  // The competing fits need only the pairs and their alignment (a held
-  // object's look-alikes are fitted where it lies); the places are for the moves.
-  DiscriminativePlacesSettings settings;
-  settings.places = moves_to_places ? settings.places : 0;
-  settings.index_stride = params_.index_stride;
-  settings.threads = resolveThreads(params_.num_threads);
-  const TableCache cache(tableCacheDirectory(params_.table_cache_dir));
-  return loadDiscriminativePlaces(memory, observation_, settings, prior.activeMask(),
-                                  cache.readable() ? &cache : nullptr,
-                                  [&warnings](const std::string& line) { warnings.push_back(line); });
 }
 
 void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
@@ -121,33 +55,43 @@ void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
 
 void ParticleFilter::setMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
-  swapMemory(std::move(memory));
+  setMemory(FilterMemory(params_, std::move(memory)));
+}
+
+FilterMemory ParticleFilter::setMemory(FilterMemory memory)
+{
+  swapMemory(memory);
   reset();
+  return memory;
 }
 
 void ParticleFilter::extendMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
-  if (!memory || !memory_->isPrefixOf(*memory))
+  if (!memory || !memory_->isPrefixOf(*memory))  // checked before the build
     throw MemoryError("the new memory does not extend the current one (its first " +
                       std::to_string(memory_->size()) + " prototypes must be the current ones)");
-  swapMemory(std::move(memory));
+  extendMemory(FilterMemory(params_, std::move(memory)));
 }
 
-void ParticleFilter::swapMemory(std::shared_ptr<const PrototypeMemory> memory)
+FilterMemory ParticleFilter::extendMemory(FilterMemory memory)
 {
-  memory = checkedMemory(std::move(memory));
-  PrototypePrior prior = checkedPrior(*memory, params_);
-  std::vector<std::string> warnings;
-  std::shared_ptr<const ProposalIndex> index = buildIndex(*memory, prior, warnings);
-  std::shared_ptr<const ProfileIndex> profile_index = buildProfileIndex(*memory, prior, warnings);
-  std::shared_ptr<const DiscriminativePlaces> places = buildPlaces(*memory, prior, warnings);
-  // Nothing failed: swap everything at once (on an error the old memory stays).
-  memory_ = std::move(memory);
-  prior_ = std::move(prior);
-  index_ = std::move(index);
-  profile_index_ = std::move(profile_index);
-  places_ = std::move(places);
-  index_warnings_ = std::move(warnings);
+  if (!memory_->isPrefixOf(*memory.memory_))
+    throw MemoryError("the new memory does not extend the current one (its first " +
+                      std::to_string(memory_->size()) + " prototypes must be the current ones)");
+  swapMemory(memory);
+  return memory;
+}
+
+void ParticleFilter::swapMemory(FilterMemory& memory)
+{
+  if (!sameParameters(memory.params_, params_))
+    throw ParameterError("the memory was made ready for other parameters than the filter's");
+  std::swap(memory_, memory.memory_);
+  std::swap(prior_, memory.prior_);
+  std::swap(index_, memory.index_);
+  std::swap(profile_index_, memory.profile_index_);
+  std::swap(places_, memory.places_);
+  std::swap(index_warnings_, memory.warnings_);
 }
 
 void ParticleFilter::reset()

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include <opencv2/core/utility.hpp>
 #include <opencv2/flann.hpp>
 
 #include "amcr/errors.h"
+#include "amcr/parallel_for.h"
 
 namespace amcr
 {
@@ -149,28 +149,25 @@ ProfileIndex::ProfileIndex(const PrototypeMemory& memory, int stride, const std:
   if (stride < 1)
     throw ParameterError("the profile index's stride must be at least 1 table px, got " + std::to_string(stride));
   const std::vector<int> indexed = indexedPrototypes(memory.size(), active);
-  // Each prototype's places on OpenCV's threads, merged in prototype order.
+  // Each prototype's places on OpenCV's threads (parallel_for.h), merged in prototype order.
   std::vector<std::vector<Entry>> parts(indexed.size());
   std::vector<std::vector<ProfileKey>> part_keys(indexed.size());
-  cv::parallel_for_(cv::Range(0, static_cast<int>(indexed.size())), [&](const cv::Range& range) {
-    for (int i = range.start; i < range.end; ++i)
+  parallelFor(static_cast<int>(indexed.size()), resolveThreads(0), [&](int i) {
+    const Prototype& prototype = memory[indexed[i]];
+    for (int at_stride = stride; at_stride >= 1; at_stride = at_stride == 1 ? 0 : std::max(1, at_stride / 2))
     {
-      const Prototype& prototype = memory[indexed[i]];
-      for (int at_stride = stride; at_stride >= 1; at_stride = at_stride == 1 ? 0 : std::max(1, at_stride / 2))
+      parts[i].clear();
+      part_keys[i].clear();
+      for (const cv::Point& at : prototype.interior())
       {
-        parts[i].clear();
-        part_keys[i].clear();
-        for (const cv::Point& at : prototype.interior())
-        {
-          RadialProfile profile;
-          if (at.x % at_stride != 0 || at.y % at_stride != 0 || !tableProfile(prototype, at.x, at.y, profile))
-            continue;
-          parts[i].push_back({indexed[i], static_cast<short>(at.x), static_cast<short>(at.y)});
-          part_keys[i].push_back(profileKey(profile));
-        }
-        if (static_cast<int>(parts[i].size()) >= kMinPlacesPerPrototype)
-          break;
+        RadialProfile profile;
+        if (at.x % at_stride != 0 || at.y % at_stride != 0 || !tableProfile(prototype, at.x, at.y, profile))
+          continue;
+        parts[i].push_back({indexed[i], static_cast<short>(at.x), static_cast<short>(at.y)});
+        part_keys[i].push_back(profileKey(profile));
       }
+      if (static_cast<int>(parts[i].size()) >= kMinPlacesPerPrototype)
+        break;
     }
   });
   std::size_t total = 0;

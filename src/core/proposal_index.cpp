@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include <opencv2/core/utility.hpp>
 #include <opencv2/flann.hpp>
 
 #include "amcr/errors.h"
 #include "amcr/index_cache.h"
+#include "amcr/parallel_for.h"
 #include "amcr/table_cache.h"
 
 namespace amcr
@@ -82,16 +82,15 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
 {
   if (stride < 1)
     throw ParameterError("index_stride must be at least 1 table px, got " + std::to_string(stride));
-  // Each prototype's entries into its own part, on OpenCV's threads, then
-  // merged in prototype order: the index does not depend on the thread count.
+  // Each prototype's entries into its own part, on OpenCV's threads
+  // (parallel_for.h), then merged in prototype order: the index does not
+  // depend on the thread count.
   const std::vector<int> indexed = indexedPrototypes(memory.size(), active);
   std::vector<Part> parts(indexed.size());
   const auto indexAll = [&](int at_stride) {
     std::size_t total = 0;
-    cv::parallel_for_(cv::Range(0, static_cast<int>(indexed.size())), [&](const cv::Range& range) {
-      for (int i = range.start; i < range.end; ++i)
-        parts[i] = indexPrototype(memory[indexed[i]], indexed[i], at_stride);
-    });
+    parallelFor(static_cast<int>(indexed.size()), resolveThreads(0),
+                [&](int i) { parts[i] = indexPrototype(memory[indexed[i]], indexed[i], at_stride); });
     for (const Part& part : parts)
       total += part.entries.size();
     return total;
@@ -111,9 +110,8 @@ ProposalIndex::ProposalIndex(const PrototypeMemory& memory, int stride, const st
   {
     const std::size_t step = indexed.size() / kBudgetSample;
     std::vector<std::size_t> sampled(kBudgetSample, 0);
-    cv::parallel_for_(cv::Range(0, static_cast<int>(kBudgetSample)), [&](const cv::Range& range) {
-      for (int k = range.start; k < range.end; ++k)
-        sampled[k] = indexPrototype(memory[indexed[k * step]], indexed[k * step], stride).entries.size();
+    parallelFor(static_cast<int>(kBudgetSample), resolveThreads(0), [&](int k) {
+      sampled[k] = indexPrototype(memory[indexed[k * step]], indexed[k * step], stride).entries.size();
     });
     std::size_t sum = 0;
     for (std::size_t n : sampled)

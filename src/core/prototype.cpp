@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amcr/errors.h"
+#include "amcr/parallel_for.h"
 #include "amcr/radial_scan.h"
 
 namespace amcr
@@ -139,20 +140,20 @@ void Prototype::buildTable(double edge_threshold)
     dir_x[b] = static_cast<float>(std::cos(binToAngle(b)));
     dir_y[b] = static_cast<float>(std::sin(binToAngle(b)));
   }
-  cv::parallel_for_(cv::Range(0, node_rows_), [&](const cv::Range& range) {
-    for (int j = range.start; j < range.end; ++j)
-      for (int i = 0; i < node_cols_; ++i)
+  // A row of nodes per piece of work, on OpenCV's threads (parallel_for.h).
+  parallelFor(node_rows_, resolveThreads(0), [&](int j) {
+    for (int i = 0; i < node_cols_; ++i)
+    {
+      std::uint8_t* cell = &table_[(static_cast<std::size_t>(j) * node_cols_ + i) * kDirectionBins];
+      const float x = std::min(static_cast<float>(cols - 1), static_cast<float>(i * stride_) + node_offset);
+      const float y = std::min(static_cast<float>(rows - 1), static_cast<float>(j * stride_) + node_offset);
+      for (int b = 0; b < kDirectionBins; ++b)
       {
-        std::uint8_t* cell = &table_[(static_cast<std::size_t>(j) * node_cols_ + i) * kDirectionBins];
-        const float x = std::min(static_cast<float>(cols - 1), static_cast<float>(i * stride_) + node_offset);
-        const float y = std::min(static_cast<float>(rows - 1), static_cast<float>(j * stride_) + node_offset);
-        for (int b = 0; b < kDirectionBins; ++b)
-        {
-          const RayHit hit = scanner.scan(x, y, dir_x[b], dir_y[b]);
-          if (hit.valid && hit.distance <= kMaxTableDistance)
-            cell[b] = static_cast<std::uint8_t>(std::lround(hit.distance / kDistanceUnit));
-        }
+        const RayHit hit = scanner.scan(x, y, dir_x[b], dir_y[b]);
+        if (hit.valid && hit.distance <= kMaxTableDistance)
+          cell[b] = static_cast<std::uint8_t>(std::lround(hit.distance / kDistanceUnit));
       }
+    }
   });
 }
 

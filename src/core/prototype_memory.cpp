@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "amcr/errors.h"
+#include "amcr/parallel_for.h"
 #include "amcr/prototype_directory.h"
 #include "amcr/prototype_file.h"
 #include "amcr/resource_bounds.h"
@@ -92,24 +93,21 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
   if (warn && !cache.problem().empty())
     warn(cache.problem());
 
-  // Each file into its own slot, on OpenCV's threads; warnings and errors
-  // are taken in file order afterwards, so the memory and what is reported
-  // do not depend on the thread count.
+  // Each file into its own slot, on OpenCV's threads (parallel_for.h);
+  // warnings and errors are taken in file order afterwards, so the memory
+  // and what is reported do not depend on the thread count.
   std::vector<LoadedPrototype> loaded(files.size());
   std::vector<std::exception_ptr> failed(files.size());
   LoadProgress load_progress(files.size(), progress);
-  cv::parallel_for_(cv::Range(0, static_cast<int>(files.size())), [&](const cv::Range& range) {
-    for (int i = range.start; i < range.end; ++i)
+  parallelFor(static_cast<int>(files.size()), resolveThreads(0), [&](int i) {
+    try
     {
-      try
-      {
-        loaded[i] = loadPrototypeFile(files[i].path, files[i].label, table_params, cache, files[i].instance);
-        load_progress.done(loaded[i].from_cache);
-      }
-      catch (...)  // not a bad file (bad_alloc, a cv::Exception): rethrown on this thread below
-      {
-        failed[i] = std::current_exception();
-      }
+      loaded[i] = loadPrototypeFile(files[i].path, files[i].label, table_params, cache, files[i].instance);
+      load_progress.done(loaded[i].from_cache);
+    }
+    catch (...)  // not a bad file (bad_alloc, a cv::Exception): rethrown on this thread below
+    {
+      failed[i] = std::current_exception();
     }
   });
 

@@ -47,6 +47,14 @@ Recognizer::Recognizer(const Params& params, std::shared_ptr<const PrototypeMemo
 {
 }
 
+Recognizer::Recognizer(FilterMemory memory)
+  : params_((memory.params().validate(), memory.params()))
+  , filter_(std::move(memory))
+  , tracker_(params_)
+  , budget_(params_.frame_budget_ms)
+{
+}
+
 void Recognizer::setPolicy(std::unique_ptr<ExplorationPolicy> policy) { filter_.setPolicy(std::move(policy)); }
 
 void Recognizer::setClock(Clock clock) { budget_.setClock(std::move(clock)); }
@@ -57,10 +65,19 @@ void Recognizer::setMemory(std::shared_ptr<const PrototypeMemory> memory)
   reset();
 }
 
+FilterMemory Recognizer::setMemory(FilterMemory memory)
+{
+  FilterMemory replaced = filter_.setMemory(std::move(memory));
+  reset();
+  return replaced;
+}
+
 void Recognizer::extendMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
   filter_.extendMemory(std::move(memory));
 }
+
+FilterMemory Recognizer::extendMemory(FilterMemory memory) { return filter_.extendMemory(std::move(memory)); }
 
 void Recognizer::reset()
 {

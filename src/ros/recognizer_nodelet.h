@@ -26,7 +26,8 @@
 //             node's namespace and name, amcr/ for /amcr), ~rectified (default: from the image
 //             topic's name), ~min_input_rate, ~max_input_rate (Hz).
 //             The filter's tunables are live through dynamic_reconfigure (cfg/AMCR.cfg): a change
-//             rebuilds the filter under the lock, the subscription stays.
+//             rebuilds the filter beside the running one, which answers the images until the swap;
+//             the subscription stays.
 //
 // No callback throws: bad input is reported (throttled) and skipped.
 #pragma once

@@ -1,12 +1,20 @@
 #include "recognizer_ros.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <exception>
 #include <limits>
 #include <vector>
 
+#include <boost/make_shared.hpp>
 #include <cv_bridge/cv_bridge.h>
 
 #include "amcr/overlay.h"
+#include "amcr/parallel_for.h"
 #include "image_input.h"
 #include "message_conversion.h"
 #include "parameter_loading.h"
@@ -17,16 +25,33 @@ namespace amcr_ros
 {
 namespace
 {
-/// The same prototypes in the same order (what the label table shows).
-bool sameLabelTable(const amcr::PrototypeMemory& a, const amcr::PrototypeMemory& b)
+/// Niceness of the thread that serves the rebuilding calls: the images go first, a rebuild takes the CPU
+/// they leave (on a saturated CPU it takes longer, and the output keeps its rate).
+constexpr int kRebuildNiceness = 10;
+
+/// Lowers the CPU priority of the calling thread alone (Linux: a thread's own niceness).
+void lowerThisThreadsPriority()
 {
-  if (a.size() != b.size())
-    return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i].instance() != b[i].instance() || a[i].label() != b[i].label())
-      return false;
-  return true;
+  const auto thread = static_cast<id_t>(syscall(SYS_gettid));
+  if (setpriority(PRIO_PROCESS, thread, kRebuildNiceness) != 0)
+    ROS_WARN("cannot lower the priority of the rebuild thread (%s): a rebuild competes with the images for CPU",
+             std::strerror(errno));
 }
+
+/// A callback that runs a function once, on the thread that serves its queue.
+class RunOnce : public ros::CallbackInterface
+{
+public:
+  explicit RunOnce(std::function<void()> function) : function_(std::move(function)) {}
+  CallResult call() override
+  {
+    function_();
+    return Success;
+  }
+
+private:
+  std::function<void()> function_;
+};
 }  // namespace
 
 RecognizerRos::RecognizerRos(ros::NodeHandle nh, ros::NodeHandle private_nh,
@@ -39,7 +64,7 @@ RecognizerRos::RecognizerRos(ros::NodeHandle nh, ros::NodeHandle private_nh,
 
 void RecognizerRos::loadStartupState()
 {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   try
   {
     std::vector<std::string> notes;
@@ -66,6 +91,7 @@ void RecognizerRos::loadStartupState()
     max_input_rate_ = std::numeric_limits<double>::infinity();
 
   pub_prototypes_ = private_nh_.advertise<amcr::PrototypeTable>("prototypes", 1, true);
+  lock.unlock();  // the load builds without it, as every load does
   std::string directory;
   private_nh_.param<std::string>("prototypes", directory, "");
   if (directory.empty())
@@ -73,19 +99,29 @@ void RecognizerRos::loadStartupState()
               private_nh_.resolveName("load_prototypes").c_str());
   else
   {
-    const std::string error = loadLocked(directory);
+    PreparedSwap prepared = prepareLoad(directory);
+    const std::string error = commit(prepared);
     if (!error.empty())
+    {
+      stats_.setPrototypes(0, error);
       ROS_ERROR("%s; the nodelet keeps running: call %s with a valid directory", error.c_str(),
                 private_nh_.resolveName("load_prototypes").c_str());
+    }
   }
-  publishPrototypeTable();
+  lock.lock();
+  if (!memory_)
+    publishPrototypeTable();  // the empty table (a load publishes its own)
 }
 
 void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers)
 {
+  // The calls that rebuild are served on a thread of their own (edit_queue_): a build takes seconds, and
+  // a nodelet's callbacks run one at a time, so on its queue a build would hold up the images.
+  ros::NodeHandle edit_nh(private_nh_);
+  edit_nh.setCallbackQueue(&edit_queue_);
   // dynamic_reconfigure starts from the parameters loaded above (~config included), not from the .cfg defaults.
   reconfigure_server_ =
-      std::make_unique<dynamic_reconfigure::Server<amcr::AMCRConfig>>(reconfigure_mutex_, private_nh_);
+      std::make_unique<dynamic_reconfigure::Server<amcr::AMCRConfig>>(reconfigure_mutex_, edit_nh);
   // The .cfg's bounds are open (the Server would clamp to them); clients are shown the core's ranges.
   const ConfigBounds bounds = reconfigureBounds();
   reconfigure_server_->setConfigMin(bounds.min);
@@ -126,33 +162,40 @@ void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers
         response.success = true;
         return true;
       });
-  srv_load_ = private_nh_.advertiseService<amcr::LoadPrototypes::Request, amcr::LoadPrototypes::Response>(
+  srv_load_ = edit_nh.advertiseService<amcr::LoadPrototypes::Request, amcr::LoadPrototypes::Response>(
       "load_prototypes", [this](amcr::LoadPrototypes::Request& request, amcr::LoadPrototypes::Response& response) {
         response = loadPrototypes(request.directory);
         return true;  // the answer carries the error: the call itself succeeded
       });
-  srv_teach_ = private_nh_.advertiseService<amcr::TeachPrototype::Request, amcr::TeachPrototype::Response>(
+  srv_teach_ = edit_nh.advertiseService<amcr::TeachPrototype::Request, amcr::TeachPrototype::Response>(
       "teach", [this](amcr::TeachPrototype::Request& request, amcr::TeachPrototype::Response& response) {
         response = teach(request);
         return true;
       });
-  srv_remove_ = private_nh_.advertiseService<amcr::RemovePrototype::Request, amcr::RemovePrototype::Response>(
+  srv_remove_ = edit_nh.advertiseService<amcr::RemovePrototype::Request, amcr::RemovePrototype::Response>(
       "remove_prototype",
       [this](amcr::RemovePrototype::Request& request, amcr::RemovePrototype::Response& response) {
         response = removePrototype(request.label);
         return true;
       });
+  // OpenCV's workers are started here, at the host's priority: started later by the rebuild thread, they
+  // would inherit its lower one, and the images' loops run on them.
+  amcr::startWorkerThreads();
+  edit_queue_.addCallback(boost::make_shared<RunOnce>(lowerThisThreadsPriority));
+  edit_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &edit_queue_);
+  edit_spinner_->start();
 }
 
-void RecognizerRos::restart(std::unique_ptr<amcr::Recognizer> replacement)
+std::unique_ptr<amcr::Recognizer> RecognizerRos::restart(std::unique_ptr<amcr::Recognizer> replacement)
 {
   if (replacement)
-    recognizer_ = std::move(replacement);
+    std::swap(recognizer_, replacement);
   else if (recognizer_)
     recognizer_->reset();
   last_stamp_ = ros::Time();
   fresh_ = true;
   stats_.restarted();
+  return replacement;
 }
 
 std::string RecognizerRos::reset()
@@ -163,122 +206,6 @@ std::string RecognizerRos::reset()
                                        : "no prototypes loaded: the filter starts once they are";
   ROS_INFO("%s", what.c_str());
   return what;
-}
-
-amcr::PrototypeMemory RecognizerRos::loadDirectory(const std::string& directory, const amcr::Params& params)
-{
-  return amcr::PrototypeMemory::loadDirectory(
-      directory, params, [](const std::string& w) { ROS_WARN("prototypes: %s", w.c_str()); },
-      [](const std::string& line) { ROS_INFO("%s", line.c_str()); });
-}
-
-std::string RecognizerRos::loadLocked(const std::string& directory)
-{
-  try
-  {
-    auto memory = std::make_shared<amcr::PrototypeMemory>(loadDirectory(directory, params_));
-    std::unique_ptr<amcr::Recognizer> replacement;
-    if (recognizer_)
-      recognizer_->setMemory(memory);  // the same recognizer: track ids go on counting
-    else
-      replacement = std::make_unique<amcr::Recognizer>(params_, memory);
-    memory_ = memory;
-    memory_directory_ = directory;
-    taught_.clear();
-    removed_labels_.clear();
-    ++table_version_;
-    restart(std::move(replacement));
-    for (const std::string& w : recognizer_->filter().indexWarnings())
-      ROS_WARN("proposal index: %s", w.c_str());
-    const amcr::TableCacheCounts& tables = memory->cacheCounts();
-    ROS_INFO("loaded %zu prototypes from '%s' (tables: %zu read from the cache, %zu built, %zu stored)",
-             memory->size(), directory.c_str(), tables.read, tables.built, tables.written);
-    stats_.setPrototypes(memory->size(), "");
-    return "";
-  }
-  catch (const std::exception& e)
-  {
-    const std::string error = "cannot load prototypes from '" + directory + "': " + e.what();
-    if (!memory_)
-      stats_.setPrototypes(0, error);
-    return error;
-  }
-}
-
-amcr::LoadPrototypes::Response RecognizerRos::loadPrototypes(const std::string& directory)
-{
-  std::lock_guard<std::mutex> lock(mutex_);
-  amcr::LoadPrototypes::Response response;
-  response.message = loadLocked(directory);
-  response.success = response.message.empty();
-  response.num_prototypes = response.success ? static_cast<int>(memory_->size()) : 0;
-  if (response.success)
-    publishPrototypeTable();
-  else
-    ROS_ERROR("%s (the previous memory stays in use)", response.message.c_str());
-  return response;
-}
-
-std::string RecognizerRos::reconfigure(amcr::AMCRConfig& config, std::uint32_t level)
-{
-  std::lock_guard<std::mutex> lock(mutex_);
-  std::string error;
-  try
-  {
-    applyConfigLocked(config, level);
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-    ROS_ERROR("reconfiguration refused, the previous parameters stay: %s", error.c_str());
-  }
-  catch (...)
-  {
-    error = "unknown error";
-    ROS_ERROR("reconfiguration refused, the previous parameters stay: unknown error");
-  }
-  try
-  {
-    config = toConfig(params_);  // what is in effect is what the server keeps and the clients see
-  }
-  catch (const std::exception& e)
-  {
-    ROS_ERROR("cannot show the parameters in effect: %s", e.what());
-  }
-  return error;
-}
-
-void RecognizerRos::applyConfigLocked(const amcr::AMCRConfig& config, std::uint32_t level)
-{
-  amcr::Params changed = fromConfig(config, params_);  // refuses a value out of range, naming it
-  changed.validate();
-  const std::string what = describeChanges(params_, changed);
-  if (what.empty())
-    return;  // the initial call, or nothing new
-  std::shared_ptr<const amcr::PrototypeMemory> memory = memory_;
-  if (memory && ((level & kReconfigureTables) || tablesDiffer(changed, params_)))
-    memory = rebuildMemory(changed);
-  const bool tables_rebuilt = memory != memory_;
-  std::unique_ptr<amcr::Recognizer> rebuilt;
-  if (memory)
-    rebuilt = std::make_unique<amcr::Recognizer>(changed, memory);  // refuses priors naming no prototype
-  // Nothing failed: swap everything at once.
-  // A prototype taught and saved now comes from the directory, in its sorted place: a new table.
-  const bool table_changed = tables_rebuilt && !sameLabelTable(*memory, *memory_);
-  params_ = changed;
-  memory_ = memory;
-  restart(std::move(rebuilt));  // null only while no memory is loaded: then there is no filter either
-  if (table_changed)
-  {
-    ++table_version_;
-    publishPrototypeTable();
-  }
-  if (recognizer_)
-    for (const std::string& w : recognizer_->filter().indexWarnings())
-      ROS_WARN("proposal index: %s", w.c_str());
-  ROS_INFO("reconfigured (%s): %s", what.c_str(),
-           !memory_ ? "no prototypes loaded yet"
-                    : tables_rebuilt ? "prototype tables and filter rebuilt" : "filter rebuilt");
 }
 
 amcr::Params RecognizerRos::params() const

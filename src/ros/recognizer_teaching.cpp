@@ -1,6 +1,6 @@
-// RecognizerRos's edits of the memory at runtime (recognizer_ros.h): ~teach,
-// ~remove_prototype, and the rebuild of an edited memory when the tables must
-// be built again (a reconfiguration).
+// RecognizerRos's edits of the memory at runtime (recognizer_ros.h): ~teach
+// and ~remove_prototype, each built without the frame lock and swapped in by
+// commit() (recognizer_reload.cpp).
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "amcr/errors.h"
+#include "amcr/parallel_for.h"
 #include "amcr/region_shape.h"
 #include "recognizer_ros.h"
 
@@ -53,6 +54,8 @@ amcr::TeachPrototype::Response RecognizerRos::teach(const amcr::TeachPrototype::
   amcr::TeachPrototype::Response response;
   try
   {
+    std::lock_guard<std::mutex> rebuilding(rebuild_mutex_);
+    const amcr::SingleThreadScope beside_the_images;  // the recognizer keeps OpenCV's threads
     response.message = teachShape(request, response);
   }
   catch (const std::exception& e)
@@ -74,63 +77,62 @@ std::string RecognizerRos::teachShape(const amcr::TeachPrototype::Request& reque
                                       amcr::TeachPrototype::Response& response)
 {
   const auto start = std::chrono::steady_clock::now();
-  // Under the lock: the checks, and what the cut needs.
-  cv_bridge::CvImageConstPtr image;
-  amcr::Params params;
-  std::shared_ptr<const amcr::PrototypeMemory> base;
+  // The checks on a copy of the state (commit() refuses the swap when it changed meanwhile).
+  const EditState state = editState();
+  std::string why = checkLabel(request.label);
+  if (!why.empty())
+    return why;
+  if (state.memory && state.memory->find(request.label) >= 0)
+    return "the label '" + request.label + "' is taken (" +
+           std::to_string(state.memory->instancesOf(request.label).size()) +
+           " prototypes): remove it with ~remove_prototype or pick another";
   std::string saved;
+  if (request.save)
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::string why = checkLabel(request.label);
-    if (!why.empty())
-      return why;
-    if (memory_ && memory_->find(request.label) >= 0)
-      return "the label '" + request.label + "' is taken (" +
-             std::to_string(memory_->instancesOf(request.label).size()) +
-             " prototypes): remove it with ~remove_prototype or pick another";
-    if (request.save)
-    {
-      if (memory_directory_.empty())
-        return "nowhere to save: no prototype directory is loaded (set ~prototypes or call ~load_prototypes)";
-      saved = (std::filesystem::path(memory_directory_) / (request.label + ".png")).string();
-      std::error_code error;
-      if (std::filesystem::exists(saved, error))
-        return "'" + saved + "' exists already: remove it or pick another label";
-    }
-    if (!last_image_)
-      return "no image received yet: there is nothing to cut the shape from";
-    image = last_image_;
-    params = params_;
-    base = memory_;
+    if (state.directory.empty())
+      return "nowhere to save: no prototype directory is loaded (set ~prototypes or call ~load_prototypes)";
+    saved = (std::filesystem::path(state.directory) / (request.label + ".png")).string();
+    std::error_code error;
+    if (std::filesystem::exists(saved, error))
+      return "'" + saved + "' exists already: remove it or pick another label";
   }
+  if (!state.last_image)
+    return "no image received yet: there is nothing to cut the shape from";
 
-  // Without the lock (the new prototype's table takes a few hundred ms): the cut and the new memory.
-  const amcr::CutShape cut = amcr::cutShape(image->image, requestedRegion(request), params);
+  // Without the lock (images go on being recognized): the cut, the new memory and the filter's indexes.
+  const amcr::CutShape cut = amcr::cutShape(state.last_image->image, requestedRegion(request), state.params);
   if (!cut.why.empty())
     return cut.why;
-  auto memory = base ? std::make_shared<amcr::PrototypeMemory>(*base) : std::make_shared<amcr::PrototypeMemory>();
-  memory->add(request.label, cut.silhouette, params);  // MemoryError when the cut holds no usable shape
+  auto memory = state.memory ? std::make_shared<amcr::PrototypeMemory>(*state.memory)
+                             : std::make_shared<amcr::PrototypeMemory>();
+  memory->add(request.label, cut.silhouette, state.params);  // MemoryError when the cut holds no usable shape
+  amcr::FilterMemory tables(state.params, std::move(memory));
 
-  // Under the lock again: the swap, unless the memory changed meanwhile.
-  const auto cut_done = std::chrono::steady_clock::now();
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (memory_ != base)
-    return "the memory changed while the shape was cut (a load, a reconfiguration or another ~teach): call again";
-  if (!saved.empty() && !cv::imwrite(saved, cut.silhouette))
-    return "cannot write '" + saved + "'";
-  try
-  {
-    swapEditedMemory(memory, true);
-  }
-  catch (...)
-  {
-    if (!saved.empty())
-      std::filesystem::remove(saved);  // nothing changed: not on disk either
-    throw;
-  }
-  if (saved.empty())
-    taught_.push_back({request.label, cut.silhouette.clone()});
-  response.prototype_id = static_cast<int>(memory->size()) - 1;
+  // Under the lock: the swap, unless the memory changed meanwhile.
+  const auto built = std::chrono::steady_clock::now();
+  PreparedSwap prepared;
+  prepared.generation = state.generation;
+  prepared.swap = [&] {
+    if (!saved.empty() && !cv::imwrite(saved, cut.silhouette))
+      return "cannot write '" + saved + "'";
+    try
+    {
+      swapEditedMemory(tables, true);
+    }
+    catch (...)
+    {
+      if (!saved.empty())
+        std::filesystem::remove(saved);  // nothing changed: not on disk either
+      throw;
+    }
+    if (saved.empty())
+      taught_.push_back({request.label, cut.silhouette.clone()});
+    response.prototype_id = static_cast<int>(memory_->size()) - 1;
+    return std::string();
+  };
+  why = commit(prepared);
+  if (!why.empty())
+    return why;
   response.saved_path = saved;
   const std::string where = saved.empty() ? "not saved" : "saved to " + saved;
   const auto ms = [](std::chrono::steady_clock::duration d) {
@@ -138,34 +140,20 @@ std::string RecognizerRos::teachShape(const amcr::TeachPrototype::Request& reque
   };
   const auto end = std::chrono::steady_clock::now();
   ROS_INFO("taught '%s' from a %d x %d px cut of the last image (prototype %d, %s) in %.0f ms (%.0f ms of it "
-           "with the filter held: the proposal index); label table version %u",
+           "for the swap); label table version %u",
            request.label.c_str(), cut.bounds.width, cut.bounds.height, response.prototype_id, where.c_str(),
-           ms(end - start), ms(end - cut_done), table_version_);
+           ms(end - start), ms(end - built), tableVersion());
   return "";
 }
 
 amcr::RemovePrototype::Response RecognizerRos::removePrototype(const std::string& label)
 {
   amcr::RemovePrototype::Response response;
-  std::lock_guard<std::mutex> lock(mutex_);
   try
   {
-    if (!memory_ || memory_->find(label) < 0)
-      response.message = "no label '" + label + "' in the memory";
-    else if (memory_->labels().size() == 1)
-      response.message = "'" + label + "' is the memory's only label: load another memory instead";
-    else
-    {
-      auto memory = std::make_shared<amcr::PrototypeMemory>(*memory_);
-      response.num_removed = static_cast<int>(memory->remove(label));
-      swapEditedMemory(memory, false);
-      taught_.erase(std::remove_if(taught_.begin(), taught_.end(),
-                                   [&label](const TaughtShape& t) { return t.label == label; }),
-                    taught_.end());
-      removed_labels_.push_back(label);
-      ROS_INFO("removed '%s' (%d prototypes; files untouched): filter restarted, label table version %u",
-               label.c_str(), response.num_removed, table_version_);
-    }
+    std::lock_guard<std::mutex> rebuilding(rebuild_mutex_);
+    const amcr::SingleThreadScope beside_the_images;
+    response.message = removeLabel(label, response);
   }
   catch (const std::exception& e)
   {
@@ -177,8 +165,37 @@ amcr::RemovePrototype::Response RecognizerRos::removePrototype(const std::string
     response.num_removed = 0;
     ROS_ERROR("~remove_prototype '%s' refused, nothing changed: %s", label.c_str(), response.message.c_str());
   }
-  response.table_version = table_version_;
+  response.table_version = tableVersion();
   return response;
+}
+
+std::string RecognizerRos::removeLabel(const std::string& label, amcr::RemovePrototype::Response& response)
+{
+  const EditState state = editState();
+  if (!state.memory || state.memory->find(label) < 0)
+    return "no label '" + label + "' in the memory";
+  if (state.memory->labels().size() == 1)
+    return "'" + label + "' is the memory's only label: load another memory instead";
+  // Without the lock: the smaller memory and the filter's indexes.
+  auto memory = std::make_shared<amcr::PrototypeMemory>(*state.memory);
+  const int removed = static_cast<int>(memory->remove(label));
+  amcr::FilterMemory tables(state.params, std::move(memory));
+  PreparedSwap prepared;
+  prepared.generation = state.generation;
+  prepared.swap = [&] {
+    swapEditedMemory(tables, false);
+    taught_.erase(std::remove_if(taught_.begin(), taught_.end(),
+                                 [&label](const TaughtShape& t) { return t.label == label; }),
+                  taught_.end());
+    removed_labels_.push_back(label);
+    ROS_INFO("removed '%s' (%d prototypes; files untouched): filter restarted, label table version %u", label.c_str(),
+             removed, table_version_);
+    return std::string();
+  };
+  const std::string why = commit(prepared);
+  if (why.empty())
+    response.num_removed = removed;
+  return why;
 }
 
 std::uint32_t RecognizerRos::tableVersion() const
@@ -187,34 +204,21 @@ std::uint32_t RecognizerRos::tableVersion() const
   return table_version_;
 }
 
-void RecognizerRos::swapEditedMemory(std::shared_ptr<const amcr::PrototypeMemory> memory, bool extended)
+void RecognizerRos::swapEditedMemory(amcr::FilterMemory& tables, bool extended)
 {
+  std::shared_ptr<const amcr::PrototypeMemory> memory = tables.memory();
   if (!recognizer_)
-    restart(std::make_unique<amcr::Recognizer>(params_, memory));  // the first prototype
+    restart(std::make_unique<amcr::Recognizer>(std::move(tables)));  // the first prototype
   else if (extended)
-    recognizer_->extendMemory(memory);  // the filter goes on
+    tables = recognizer_->extendMemory(std::move(tables));  // the filter goes on
   else
   {
-    recognizer_->setMemory(memory);  // the indices moved: the same recognizer, track ids go on counting
+    tables = recognizer_->setMemory(std::move(tables));  // the indices moved: the same recognizer, track ids go on
     restart();
   }
   memory_ = std::move(memory);
   ++table_version_;
   stats_.setPrototypes(memory_->size(), "");
   publishPrototypeTable();
-}
-
-std::shared_ptr<const amcr::PrototypeMemory> RecognizerRos::rebuildMemory(const amcr::Params& params) const
-{
-  auto memory = std::make_shared<amcr::PrototypeMemory>();
-  if (!memory_directory_.empty())
-    *memory = loadDirectory(memory_directory_, params);
-  for (const std::string& label : removed_labels_)
-    memory->remove(label);
-  for (const TaughtShape& shape : taught_)
-    memory->add(shape.label, shape.silhouette, params);
-  if (memory->empty())
-    throw amcr::MemoryError("the rebuilt memory holds no prototype");
-  return memory;
 }
 }  // namespace amcr_ros

@@ -1,9 +1,13 @@
 // amcr_ros::RecognizerRos on its own (no nodelet, no topics in between): built
 // from plain node handles against the rostest master, fed drawn images through
-// process(), and reset, reloaded and reconfigured through its methods.
+// process(), and reset, reloaded and reconfigured through its methods; the
+// rebuilds' two steps (prepare without the lock, commit under it) with another
+// edit in between, and images recognized while a memory loads.
+#include <atomic>
 #include <map>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include <cv_bridge/cv_bridge.h>
 #include <dynamic_reconfigure/Reconfigure.h>
@@ -35,8 +39,9 @@ protected:
     clean_ = amcr_test::renderClean(scene_);
   }
 
-  /// A RecognizerRos in its own private namespace, started with `prototypes` (may be empty).
-  std::unique_ptr<RecognizerRos> make(const std::string& prototypes)
+  /// A RecognizerRos in its own private namespace, started with `prototypes` (may be empty);
+  /// `table_cache_dir` "none" builds every table.
+  std::unique_ptr<RecognizerRos> make(const std::string& prototypes, const std::string& table_cache_dir = "")
   {
     const std::string name = "~recognizer_" + std::to_string(instances_++);
     ros::NodeHandle private_nh(name);
@@ -44,7 +49,17 @@ protected:
     private_nh.setParam("config", std::string(AMCR_SOURCE_DIR) + "/config/amcr.yaml");
     private_nh.setParam("seed", 1);
     private_nh.setParam("prototypes", prototypes);
+    if (!table_cache_dir.empty())
+      private_nh.setParam("table_cache_dir", table_cache_dir);
     return std::make_unique<RecognizerRos>(ros::NodeHandle(), private_nh);
+  }
+
+  /// The size of the memory the next frame is recognized with.
+  std::size_t memorySize(RecognizerRos& recognizer, double seconds)
+  {
+    RecognizerRos::Frame out;
+    EXPECT_TRUE(recognizer.process(frame(seconds), false, out));
+    return out.memory ? out.memory->size() : 0;
   }
 
   /// The next frame of the scene, mono8, `seconds` after the start (the stream's clock).
@@ -230,6 +245,108 @@ TEST_F(RecognizerRosTest, ReconfigureAppliesAndRefusesPriorsAlone)
   EXPECT_EQ(recognizer->reconfigure(config, 0), "") << "the next change is refused";
   EXPECT_EQ(recognizer->params().num_v_particles, 40);
   EXPECT_EQ(recognizer->params().prototype_priors, arrow_twice);
+}
+
+// The generation check: a load built while another edit landed is refused at the swap, and nothing
+// changes (memory, table version, the running filter); built again, it lands.
+TEST_F(RecognizerRosTest, ALoadIsRefusedWhenTheMemoryChangedDuringItsBuild)
+{
+  amcr_test::TempDir other;
+  for (ShapeId id : {ShapeId::kArrow, ShapeId::kFlag})
+    cv::imwrite(other.file(amcr_test::shapeName(id) + ".png"), amcr_test::drawPrototype(id));
+  auto recognizer = make(dir_.path());
+  EXPECT_EQ(step(*recognizer, 0.0), 1);
+
+  RecognizerRos::PreparedSwap load = recognizer->prepareLoad(other.path());
+  ASSERT_TRUE(load.error.empty()) << load.error;
+  const amcr::RemovePrototype::Response removed = recognizer->removePrototype("star");  // lands first
+  ASSERT_TRUE(removed.success) << removed.message;
+  EXPECT_EQ(step(*recognizer, 0.1), 1) << "the removal restarts the filter";
+
+  EXPECT_EQ(recognizer->commit(load), RecognizerRos::kMemoryChanged);
+  EXPECT_EQ(recognizer->tableVersion(), removed.table_version) << "a refused swap changed the table";
+  EXPECT_EQ(step(*recognizer, 0.2), 2) << "a refused swap restarted the filter";
+  EXPECT_EQ(memorySize(*recognizer, 0.3), 2u) << "not the memory without 'star'";
+
+  load = recognizer->prepareLoad(other.path());
+  EXPECT_EQ(recognizer->commit(load), "");
+  EXPECT_EQ(recognizer->tableVersion(), removed.table_version + 1);
+  EXPECT_EQ(memorySize(*recognizer, 0.4), 2u);
+  EXPECT_EQ(step(*recognizer, 0.5), 2) << "the load did not restart the filter";
+}
+
+// A reconfiguration built while a load landed is refused likewise; the parameters in effect stay, and
+// reconfigure() shows them.
+TEST_F(RecognizerRosTest, AReconfigurationIsRefusedWhenTheMemoryChangedDuringItsBuild)
+{
+  auto recognizer = make(dir_.path());
+  EXPECT_EQ(step(*recognizer, 0.0), 1);
+  amcr::AMCRConfig config = amcr_ros::toConfig(recognizer->params());
+  config.num_v_particles = 40;
+  config.prototype_size = 96;  // the tables are rebuilt too
+  RecognizerRos::PreparedSwap change = recognizer->prepareReconfigure(config, amcr_ros::kReconfigureTables);
+  ASSERT_TRUE(change.error.empty()) << change.error;
+  ASSERT_TRUE(recognizer->loadPrototypes(dir_.path()).success);  // lands first
+  const std::uint32_t version = recognizer->tableVersion();
+
+  EXPECT_EQ(recognizer->commit(change), RecognizerRos::kMemoryChanged);
+  EXPECT_EQ(recognizer->params().num_v_particles, 60);
+  EXPECT_EQ(recognizer->params().prototype_size, 128);
+  EXPECT_EQ(recognizer->tableVersion(), version);
+  EXPECT_EQ(step(*recognizer, 0.1), 1);
+  EXPECT_EQ(step(*recognizer, 0.2), 2) << "a refused swap restarted the filter";
+
+  EXPECT_EQ(recognizer->reconfigure(config, amcr_ros::kReconfigureTables), "") << "built again, it lands";
+  EXPECT_EQ(config.num_v_particles, 40);
+  EXPECT_EQ(recognizer->params().prototype_size, 96);
+}
+
+// Two loads at once: the second waits for the first and builds on what it swapped in; neither is refused.
+TEST_F(RecognizerRosTest, TwoLoadsAtOnceRunOneAfterTheOther)
+{
+  amcr_test::TempDir other;
+  for (ShapeId id : {ShapeId::kArrow, ShapeId::kFlag})
+    cv::imwrite(other.file(amcr_test::shapeName(id) + ".png"), amcr_test::drawPrototype(id));
+  auto recognizer = make(dir_.path(), "none");
+  const std::uint32_t version = recognizer->tableVersion();
+  amcr::LoadPrototypes::Response first, second;
+  std::thread loading([&] { first = recognizer->loadPrototypes(other.path()); });
+  second = recognizer->loadPrototypes(dir_.path());
+  loading.join();
+  EXPECT_TRUE(first.success) << first.message;
+  EXPECT_TRUE(second.success) << second.message;
+  EXPECT_EQ(recognizer->tableVersion(), version + 2);
+}
+
+// The build runs without the frame lock: images are recognized, with the previous memory, while a
+// memory loads.
+TEST_F(RecognizerRosTest, ImagesAreRecognizedWithThePreviousMemoryWhileAMemoryLoads)
+{
+  amcr_test::TempDir large;
+  for (ShapeId id : amcr_test::allShapes())
+    cv::imwrite(large.file(amcr_test::shapeName(id) + ".png"), amcr_test::drawPrototype(id));
+  for (std::uint64_t seed = 1; seed <= 10; ++seed)
+    cv::imwrite(large.file("random_" + std::to_string(seed) + ".png"), amcr_test::drawRandomSilhouette(seed));
+  auto recognizer = make(dir_.path(), "none");  // no cache: every table is built
+  EXPECT_EQ(memorySize(*recognizer, 0.0), 3u);
+
+  std::atomic<bool> loaded{false};
+  amcr::LoadPrototypes::Response response;
+  std::thread loading([&] {
+    response = recognizer->loadPrototypes(large.path());
+    loaded = true;
+  });
+  int with_the_previous_memory = 0;  // while the load was under way
+  for (double t = 0.1; !loaded; t += 0.1)
+  {
+    RecognizerRos::Frame out;
+    ASSERT_TRUE(recognizer->process(frame(t), false, out));
+    with_the_previous_memory += out.memory->size() == 3u ? 1 : 0;
+  }
+  loading.join();
+  ASSERT_TRUE(response.success) << response.message;
+  EXPECT_GE(with_the_previous_memory, 3) << "images waited for the load";
+  EXPECT_EQ(memorySize(*recognizer, 100.0), 15u);
 }
 }  // namespace
 
