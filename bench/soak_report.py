@@ -10,12 +10,16 @@ import soak_scene
 
 SECONDS_BEFORE_A_CALL = 5.0  # the output a call's window is compared with
 MIN_FRAMES_TO_JUDGE = 20     # fewer answers expected while a call ran: too short a window to judge its rate by
+KEEPING_UP = 0.9             # share of the input rate answered before a call for its rate to be judged
 
 
-def add_output_around_calls(outcomes, recorder):
+def add_output_around_calls(outcomes, recorder, input_rate):
     """Adds to each call the output while it was under way ("output_during") and in the seconds before it
     ("output_before"): answers, rate, latency; the relative change of the rate; and whether the rate is
-    judged (a reload, long enough for the answers expected in it)."""
+    judged: a reload, long enough for the answers expected in it, with the recognizer keeping up with the
+    input before it (answering at least KEEPING_UP of `input_rate`). A recognizer that cannot keep up
+    answers at the CPU share it gets, so any other work on the machine, the rebuild's included (it runs
+    at a lower priority but is not free), shows in its rate: that is saturation, not a stalled stream."""
     for o in outcomes:
         start, end = o["wall"]
         before = recorder.window(start - SECONDS_BEFORE_A_CALL, start)
@@ -24,7 +28,8 @@ def add_output_around_calls(outcomes, recorder):
         rate_during = during["answers"] / max(end - start, 1e-9)
         o["output_before"], o["output_during"] = before, during
         o["rate_change"] = round((rate_during - rate_before) / rate_before, 3) if rate_before > 0 else None
-        o["rate_judged"] = bool(o["reloads"] and o["rate_change"] is not None
+        o["keeping_up"] = rate_before >= KEEPING_UP * input_rate
+        o["rate_judged"] = bool(o["reloads"] and o["rate_change"] is not None and o["keeping_up"]
                                 and rate_before * (end - start) >= MIN_FRAMES_TO_JUDGE)
 
 
@@ -47,7 +52,8 @@ def around_line(o):
     change = "-" if o["rate_change"] is None else "%+.0f %%" % (100.0 * o["rate_change"])
     return ("t=%5.1f s  %-36s %5.2f s: %s -> %s Hz (%s%s); latency median %s -> %s ms, p95 %s -> %s ms, max %s -> %s ms"
             % (o["t_s"], o["call"], o["seconds"], b["rate_hz"], d["rate_hz"], change,
-               "" if o["rate_judged"] else ", too short to judge" if o["reloads"] else ", not judged",
+               "" if o["rate_judged"] else ", not judged: the input outran the recognizer before it"
+               if o["reloads"] and not o["keeping_up"] else ", too short to judge" if o["reloads"] else ", not judged",
                b["latency_median_ms"], d["latency_median_ms"],
                b["latency_p95_ms"], d["latency_p95_ms"], b["latency_max_ms"], d["latency_max_ms"]))
 
@@ -181,7 +187,8 @@ def markdown(figures):
             "-" if c["rate_change"] is None else "%+.0f %%" % (100.0 * c["rate_change"]),
             b["latency_median_ms"], d["latency_median_ms"], b["latency_p95_ms"], d["latency_p95_ms"],
             b["latency_max_ms"], d["latency_max_ms"],
-            "yes" if c["rate_judged"] else "too short" if c["reloads"] else "no"))
+            "yes" if c["rate_judged"] else "input outran it" if c["reloads"] and not c.get("keeping_up", True)
+            else "too short" if c["reloads"] else "no"))
     cols = ["t_s", "rss_mb", "cpu_percent", "input_hz", "output_hz", "latency_median_ms", "latency_p95_ms",
             "latency_max_ms", "processing_median_ms", "unanswered", "reported_share", "load_1min"]
     lines += ["", "## Per interval", "", "| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
