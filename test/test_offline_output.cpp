@@ -42,7 +42,8 @@ TEST(JsonOutput, EscapesQuotesBackslashesAndControlCharacters)
   EXPECT_EQ(jsonString("C:\\x"), "\"C:\\\\x\"");
   EXPECT_EQ(jsonString("l1\nl2\r\t"), "\"l1\\nl2\\r\\t\"");
   EXPECT_EQ(jsonString(std::string("\b\f", 2)), "\"\\b\\f\"");
-  EXPECT_EQ(jsonString(std::string("\x01\x1f\x7f", 3)), "\"\\u0001\\u001f\\u007f\"");
+  EXPECT_EQ(jsonString(std::string("\x01\x1f", 2)), "\"\\u0001\\u001f\"");
+  EXPECT_EQ(jsonString("\x7f"), "\"\x7f\"");  // DEL is no control character to JSON
   EXPECT_EQ(jsonString(std::string("a\0b", 3)), "\"a\\u0000b\"");
   EXPECT_EQ(jsonString(""), "\"\"");
   EXPECT_EQ(jsonString("/"), "\"/\"");
@@ -59,15 +60,20 @@ TEST(JsonOutput, StringsRoundTripThroughAStrictParser)
 
 TEST(JsonOutput, InvalidUtf8BecomesReplacementCharacters)
 {
-  // Latin-1 e-acute, a lone continuation byte, a truncated sequence, an
-  // overlong '/', a surrogate, a code point above U+10FFFF.
-  EXPECT_EQ(jsonString("caf\xe9"), "\"caf\\ufffd\"");
-  EXPECT_EQ(jsonString("\x80"), "\"\\ufffd\"");
-  EXPECT_EQ(jsonString("\xe2\x82"), "\"\\ufffd\\ufffd\"");
-  EXPECT_EQ(jsonString("\xc0\xaf"), "\"\\ufffd\\ufffd\"");
-  EXPECT_EQ(jsonString("\xed\xa0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");
-  EXPECT_EQ(jsonString("\xf4\x90\x80\x80"), "\"\\ufffd\\ufffd\\ufffd\\ufffd\"");
-  EXPECT_EQ(roundTrip("ok\xffok"), "ok\xef\xbf\xbdok");
+  const std::string fffd = "\xef\xbf\xbd";  // U+FFFD in UTF-8
+  const auto quoted = [](const std::string& text) { return "\"" + text + "\""; };
+  // Latin-1 e-acute, a lone continuation byte, a sequence cut short (one
+  // U+FFFD for the part read, before 'x' and at the end), then an overlong
+  // '/', a surrogate and a code point above U+10FFFF, whose second byte
+  // already breaks the sequence: one U+FFFD per byte.
+  EXPECT_EQ(jsonString("caf\xe9"), quoted("caf" + fffd));
+  EXPECT_EQ(jsonString("\x80"), quoted(fffd));
+  EXPECT_EQ(jsonString("\xe2\x82" "x"), quoted(fffd + "x"));
+  EXPECT_EQ(jsonString("\xe2\x82"), quoted(fffd));
+  EXPECT_EQ(jsonString("\xc0\xaf"), quoted(fffd + fffd));
+  EXPECT_EQ(jsonString("\xed\xa0\x80"), quoted(fffd + fffd + fffd));
+  EXPECT_EQ(jsonString("\xf4\x90\x80\x80"), quoted(fffd + fffd + fffd + fffd));
+  EXPECT_EQ(roundTrip("ok\xffok"), "ok" + fffd + "ok");
 }
 
 TEST(JsonOutput, NumbersAreFixedPrecisionAndFinite)
