@@ -266,6 +266,15 @@ TEST(RunnerOptions, RejectsBadCommandLinesNamingTheProblem)
       {{"--prototypes", "p", "--input", "x", "stray"}, "stray"},
       {{"--prototypes", "p", "--prototypes", "q", "--input", "x"}, "twice"},
       {{"--prototypes=", "--input", "x"}, "--prototypes"},
+      {{"--prototypes", "", "--input", "x"}, "--prototypes"},
+      // No abbreviated names, no other sign than digits, no value taken from the next option.
+      {{"--proto", "p", "--input", "x"}, "unknown option '--proto'"},
+      {{"--prototypes", "p", "--input", "x", "--seed", "+5"}, "--seed"},
+      {{"--prototypes", "p", "--input", "x", "--seed", " 5"}, "--seed"},
+      {{"--prototypes", "p", "--input", "x", "--frames", "1000000001"}, "--frames"},
+      {{"--prototypes", "p", "--input", "--bogus"}, "option --input needs a value"},
+      {{"--prototypes", "p", "--input", "x", "-x"}, "unexpected argument '-x'"},
+      {{"--prototypes", "p", "--input", "x", "--help=yes"}, "--help"},
   };
   for (const auto& c : cases)
   {
