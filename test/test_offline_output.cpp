@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "json_output.h"
-#include "mini_json.h"
 #include "runner_options.h"
+#include "strict_json.h"
 
 using amcr::offline::frameJson;
 using amcr::offline::jsonNumber;
@@ -18,22 +18,44 @@ using amcr::offline::parseRunnerOptions;
 using amcr::offline::RunnerOptions;
 using amcr::offline::skippedFrameJson;
 using amcr::offline::UsageError;
-using amcr_test::Json;
-using amcr_test::JsonParser;
+using amcr_test::member;
+using amcr_test::parseStrictJson;
+using nlohmann::json;
 
 namespace
 {
 /// Parses `text` as one JSON string value and returns it decoded.
 std::string roundTrip(const std::string& text)
 {
-  Json value;
+  json value;
   std::string error;
-  const std::string json = jsonString(text);
-  EXPECT_TRUE(JsonParser::parse(json, value, error)) << json << ": " << error;
-  EXPECT_TRUE(value.isString());
-  return value.string;
+  const std::string quoted = jsonString(text);
+  EXPECT_TRUE(parseStrictJson(quoted, value, error)) << quoted << ": " << error;
+  if (!value.is_string())
+  {
+    ADD_FAILURE() << quoted << " is no string";
+    return "";
+  }
+  return value.get<std::string>();
 }
 }  // namespace
+
+// The tests below read the output with it: it must refuse what strict JSON
+// forbids, or a writer's slip would pass.
+TEST(JsonOutput, TheStrictReaderRefusesWhatJsonForbids)
+{
+  json value;
+  std::string error;
+  EXPECT_TRUE(parseStrictJson(" {\"a\": [1, 2.5, null, true], \"b\": {\"a\": \"x\"}}\n", value, error)) << error;
+  for (const char* bad :
+       {"{\"a\": NaN}", "{\"a\": nan}", "[Infinity]", "[-inf]", "{\"a\": 1} x", "{\"a\": 1}{}", "[1,]", "{\"a\": 01}",
+        "{\"a\": .5}", "{\"a\": 1.}", "[\"\t\"]", "[\"\\ud800\"]", "{'a': 1}", "{\"a\": 1, \"a\": 2}", "", "[1] // note"})
+  {
+    error.clear();
+    EXPECT_FALSE(parseStrictJson(bad, value, error)) << "accepted: " << bad;
+    EXPECT_FALSE(error.empty()) << bad;
+  }
+}
 
 TEST(JsonOutput, EscapesQuotesBackslashesAndControlCharacters)
 {
@@ -42,7 +64,8 @@ TEST(JsonOutput, EscapesQuotesBackslashesAndControlCharacters)
   EXPECT_EQ(jsonString("C:\\x"), "\"C:\\\\x\"");
   EXPECT_EQ(jsonString("l1\nl2\r\t"), "\"l1\\nl2\\r\\t\"");
   EXPECT_EQ(jsonString(std::string("\b\f", 2)), "\"\\b\\f\"");
-  EXPECT_EQ(jsonString(std::string("\x01\x1f\x7f", 3)), "\"\\u0001\\u001f\\u007f\"");
+  EXPECT_EQ(jsonString(std::string("\x01\x1f", 2)), "\"\\u0001\\u001f\"");
+  EXPECT_EQ(jsonString("\x7f"), "\"\x7f\"");  // DEL is no control character to JSON
   EXPECT_EQ(jsonString(std::string("a\0b", 3)), "\"a\\u0000b\"");
   EXPECT_EQ(jsonString(""), "\"\"");
   EXPECT_EQ(jsonString("/"), "\"/\"");
@@ -59,15 +82,20 @@ TEST(JsonOutput, StringsRoundTripThroughAStrictParser)
 
 TEST(JsonOutput, InvalidUtf8BecomesReplacementCharacters)
 {
-  // Latin-1 e-acute, a lone continuation byte, a truncated sequence, an
-  // overlong '/', a surrogate, a code point above U+10FFFF.
-  EXPECT_EQ(jsonString("caf\xe9"), "\"caf\\ufffd\"");
-  EXPECT_EQ(jsonString("\x80"), "\"\\ufffd\"");
-  EXPECT_EQ(jsonString("\xe2\x82"), "\"\\ufffd\\ufffd\"");
-  EXPECT_EQ(jsonString("\xc0\xaf"), "\"\\ufffd\\ufffd\"");
-  EXPECT_EQ(jsonString("\xed\xa0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");
-  EXPECT_EQ(jsonString("\xf4\x90\x80\x80"), "\"\\ufffd\\ufffd\\ufffd\\ufffd\"");
-  EXPECT_EQ(roundTrip("ok\xffok"), "ok\xef\xbf\xbdok");
+  const std::string fffd = "\xef\xbf\xbd";  // U+FFFD in UTF-8
+  const auto quoted = [](const std::string& text) { return "\"" + text + "\""; };
+  // Latin-1 e-acute, a lone continuation byte, a sequence cut short (one
+  // U+FFFD for the part read, before 'x' and at the end), then an overlong
+  // '/', a surrogate and a code point above U+10FFFF, whose second byte
+  // already breaks the sequence: one U+FFFD per byte.
+  EXPECT_EQ(jsonString("caf\xe9"), quoted("caf" + fffd));
+  EXPECT_EQ(jsonString("\x80"), quoted(fffd));
+  EXPECT_EQ(jsonString("\xe2\x82" "x"), quoted(fffd + "x"));
+  EXPECT_EQ(jsonString("\xe2\x82"), quoted(fffd));
+  EXPECT_EQ(jsonString("\xc0\xaf"), quoted(fffd + fffd));
+  EXPECT_EQ(jsonString("\xed\xa0\x80"), quoted(fffd + fffd + fffd));
+  EXPECT_EQ(jsonString("\xf4\x90\x80\x80"), quoted(fffd + fffd + fffd + fffd));
+  EXPECT_EQ(roundTrip("ok\xffok"), "ok" + fffd + "ok");
 }
 
 TEST(JsonOutput, NumbersAreFixedPrecisionAndFinite)
@@ -89,10 +117,10 @@ TEST(JsonOutput, NumbersAreFixedPrecisionAndFinite)
   // Whatever the magnitude, the text is a valid JSON number.
   for (double v : {1e300, -1e300, 5e-324, 123.456})
   {
-    Json value;
+    json value;
     std::string error;
-    EXPECT_TRUE(JsonParser::parse(jsonNumber(v, 6), value, error)) << error;
-    EXPECT_TRUE(value.isNumber());
+    EXPECT_TRUE(parseStrictJson(jsonNumber(v, 6), value, error)) << error;
+    EXPECT_TRUE(value.is_number());
   }
 }
 
@@ -134,31 +162,37 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
             "[0.0001234568, -0.0000012000, 1.0000000000]], \"homography_valid\": true, "
             "\"anisotropy\": 2.0000, \"viewing_angle_deg\": 60.00, "
             "\"correspondences\": [[10.13, 20.50, 1.00, 2.00], [30.00, 40.00, 5.55, -6.00]]}], \"lost\": []}");
-  Json value;
+  json value;
   std::string error;
-  ASSERT_TRUE(JsonParser::parse(line, value, error)) << error;
-  const Json* objects = value.get("objects");
-  ASSERT_TRUE(objects && objects->isArray());
-  ASSERT_EQ(objects->array.size(), 1u);
-  EXPECT_EQ(objects->array[0].get("label")->string, "bird \"1\"");
-  const Json* valid = objects->array[0].get("homography_valid");
-  ASSERT_TRUE(valid && valid->type == Json::Type::kBool);
-  EXPECT_TRUE(valid->boolean);
-  const Json* h = objects->array[0].get("homography");
-  ASSERT_TRUE(h && h->isArray() && h->array.size() == 3u);
-  EXPECT_NEAR(h->array[2].array[0].number, 0.000123456789, 1e-10);
+  ASSERT_TRUE(parseStrictJson(line, value, error)) << error;
+  const json* objects = member(value, "objects");
+  ASSERT_TRUE(objects && objects->is_array());
+  ASSERT_EQ(objects->size(), 1u);
+  const json& first = (*objects)[0];
+  const json* label = member(first, "label");
+  ASSERT_TRUE(label && label->is_string());
+  EXPECT_EQ(label->get<std::string>(), "bird \"1\"");
+  const json* valid = member(first, "homography_valid");
+  ASSERT_TRUE(valid && valid->is_boolean());
+  EXPECT_TRUE(valid->get<bool>());
+  const json* h = member(first, "homography");
+  ASSERT_TRUE(h && h->is_array() && h->size() == 3u);
+  EXPECT_NEAR((*h)[2][0].get<double>(), 0.000123456789, 1e-10);
 
   // A track that ended is listed under "lost" with its state.
   object.state = amcr::ObjectState::kLost;
   result.lost.push_back(object);
   result.objects.clear();
-  Json with_lost;
-  ASSERT_TRUE(JsonParser::parse(frameJson(4, result), with_lost, error)) << error;
-  const Json* lost = with_lost.get("lost");
-  ASSERT_TRUE(lost && lost->isArray());
-  ASSERT_EQ(lost->array.size(), 1u);
-  EXPECT_EQ(lost->array[0].get("state")->string, "lost");
-  EXPECT_EQ(lost->array[0].get("track_id")->number, 4);
+  json with_lost;
+  ASSERT_TRUE(parseStrictJson(frameJson(4, result), with_lost, error)) << error;
+  const json* lost = member(with_lost, "lost");
+  ASSERT_TRUE(lost && lost->is_array());
+  ASSERT_EQ(lost->size(), 1u);
+  const json* state = member((*lost)[0], "state");
+  const json* track_id = member((*lost)[0], "track_id");
+  ASSERT_TRUE(state && state->is_string() && track_id && track_id->is_number());
+  EXPECT_EQ(state->get<std::string>(), "lost");
+  EXPECT_EQ(track_id->get<double>(), 4);
 }
 
 TEST(JsonOutput, EmptyAndSkippedFrames)
@@ -174,9 +208,9 @@ TEST(JsonOutput, EmptyAndSkippedFrames)
   EXPECT_EQ(skipped,
             "{\"frame\": 5, \"time_ms\": 0.000, \"iteration\": 4, \"iterations\": 0, \"objects\": [], "
             "\"lost\": [], \"skipped\": \"cannot read image 'a\\\\b.png'\"}");
-  Json value;
+  json value;
   std::string error;
-  EXPECT_TRUE(JsonParser::parse(skipped, value, error)) << error;
+  EXPECT_TRUE(parseStrictJson(skipped, value, error)) << error;
 }
 
 TEST(JsonOutput, WriteFailureThrows)
@@ -232,6 +266,15 @@ TEST(RunnerOptions, RejectsBadCommandLinesNamingTheProblem)
       {{"--prototypes", "p", "--input", "x", "stray"}, "stray"},
       {{"--prototypes", "p", "--prototypes", "q", "--input", "x"}, "twice"},
       {{"--prototypes=", "--input", "x"}, "--prototypes"},
+      {{"--prototypes", "", "--input", "x"}, "--prototypes"},
+      // No abbreviated names, no other sign than digits, no value taken from the next option.
+      {{"--proto", "p", "--input", "x"}, "unknown option '--proto'"},
+      {{"--prototypes", "p", "--input", "x", "--seed", "+5"}, "--seed"},
+      {{"--prototypes", "p", "--input", "x", "--seed", " 5"}, "--seed"},
+      {{"--prototypes", "p", "--input", "x", "--frames", "1000000001"}, "--frames"},
+      {{"--prototypes", "p", "--input", "--bogus"}, "option --input needs a value"},
+      {{"--prototypes", "p", "--input", "x", "-x"}, "unexpected argument '-x'"},
+      {{"--prototypes", "p", "--input", "x", "--help=yes"}, "--help"},
   };
   for (const auto& c : cases)
   {

@@ -20,15 +20,16 @@
 #include <opencv2/videoio.hpp>
 
 #include "amcr/overlay.h"
-#include "mini_json.h"
+#include "strict_json.h"
 
 #ifndef AMCR_OFFLINE_BINARY
 #error "AMCR_OFFLINE_BINARY must name the amcr_offline executable"
 #endif
 
 namespace fs = std::filesystem;
-using amcr_test::Json;
-using amcr_test::JsonParser;
+using amcr_test::member;
+using amcr_test::parseStrictJson;
+using nlohmann::json;
 
 namespace
 {
@@ -146,89 +147,96 @@ void expectOneErrorLine(const RunResult& run, int exit_code, const std::string& 
 }
 
 /// Checks the documented fields of one recognized object.
-void checkObject(const Json& object, const std::string& line)
+void checkObject(const json& object, const std::string& line)
 {
   for (const char* key :
        {"label", "track_id", "score", "support", "image_to_prototype", "prototype_to_image", "homography",
         "homography_valid", "anisotropy", "viewing_angle_deg", "correspondences"})
-    EXPECT_TRUE(object.get(key) != nullptr) << key << " missing in " << line;
-  const Json* label = object.get("label");
-  EXPECT_TRUE(label && label->isString()) << line;
-  const Json* score = object.get("score");
-  EXPECT_TRUE(score && score->isNumber() && score->number >= 0.0 && score->number <= 1.0) << line;
+    EXPECT_TRUE(member(object, key) != nullptr) << key << " missing in " << line;
+  const json* label = member(object, "label");
+  EXPECT_TRUE(label && label->is_string()) << line;
+  const json* score = member(object, "score");
+  EXPECT_TRUE(score && score->is_number() && score->get<double>() >= 0.0 && score->get<double>() <= 1.0) << line;
   for (const char* key : {"image_to_prototype", "prototype_to_image"})
   {
-    const Json* a = object.get(key);
-    ASSERT_TRUE(a && a->isArray() && a->array.size() == 2u) << key << " in " << line;
-    for (const Json& row : a->array)
+    const json* a = member(object, key);
+    ASSERT_TRUE(a && a->is_array() && a->size() == 2u) << key << " in " << line;
+    for (const json& row : *a)
     {
-      ASSERT_TRUE(row.isArray() && row.array.size() == 3u) << key << " in " << line;
-      for (const Json& v : row.array)
-        EXPECT_TRUE(v.isNumber()) << key << " in " << line;
+      ASSERT_TRUE(row.is_array() && row.size() == 3u) << key << " in " << line;
+      for (const json& v : row)
+        EXPECT_TRUE(v.is_number()) << key << " in " << line;
     }
   }
-  const Json* h = object.get("homography");
-  ASSERT_TRUE(h && h->isArray() && h->array.size() == 3u) << line;
-  for (const Json& row : h->array)
+  const json* h = member(object, "homography");
+  ASSERT_TRUE(h && h->is_array() && h->size() == 3u) << line;
+  for (const json& row : *h)
   {
-    ASSERT_TRUE(row.isArray() && row.array.size() == 3u) << line;
-    for (const Json& v : row.array)
-      EXPECT_TRUE(v.isNumber()) << line;
+    ASSERT_TRUE(row.is_array() && row.size() == 3u) << line;
+    for (const json& v : row)
+      EXPECT_TRUE(v.is_number()) << line;
   }
-  const Json* valid = object.get("homography_valid");
-  ASSERT_TRUE(valid && valid->type == Json::Type::kBool) << line;
-  if (!valid->boolean)
+  const json* valid = member(object, "homography_valid");
+  ASSERT_TRUE(valid && valid->is_boolean()) << line;
+  if (!valid->get<bool>())
   {
     // Not used: the homography is the affine's lift.
-    const Json* a = object.get("prototype_to_image");
+    const json& a = *member(object, "prototype_to_image");
     for (int r = 0; r < 2; ++r)
       for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(h->array[r].array[c].number, a->array[r].array[c].number, 1e-6) << line;
-    EXPECT_EQ(h->array[2].array[0].number, 0.0) << line;
-    EXPECT_EQ(h->array[2].array[1].number, 0.0) << line;
+        EXPECT_NEAR((*h)[r][c].get<double>(), a[r][c].get<double>(), 1e-6) << line;
+    EXPECT_EQ((*h)[2][0].get<double>(), 0.0) << line;
+    EXPECT_EQ((*h)[2][1].get<double>(), 0.0) << line;
   }
-  EXPECT_EQ(h->array[2].array[2].number, 1.0) << line;
-  const Json* anisotropy = object.get("anisotropy");
-  const Json* angle = object.get("viewing_angle_deg");
-  ASSERT_TRUE(anisotropy && anisotropy->isNumber() && angle && angle->isNumber()) << line;
-  EXPECT_GE(anisotropy->number, 1.0) << line;
+  EXPECT_EQ((*h)[2][2].get<double>(), 1.0) << line;
+  const json* anisotropy = member(object, "anisotropy");
+  const json* angle = member(object, "viewing_angle_deg");
+  ASSERT_TRUE(anisotropy && anisotropy->is_number() && angle && angle->is_number()) << line;
+  EXPECT_GE(anisotropy->get<double>(), 1.0) << line;
   // viewing_angle_deg = acos(1 / anisotropy), up to the rounding of both.
-  EXPECT_NEAR(std::cos(angle->number * M_PI / 180.0), 1.0 / anisotropy->number, 2e-4) << line;
-  const Json* correspondences = object.get("correspondences");
-  ASSERT_TRUE(correspondences && correspondences->isArray()) << line;
-  for (const Json& c : correspondences->array)
+  EXPECT_NEAR(std::cos(angle->get<double>() * M_PI / 180.0), 1.0 / anisotropy->get<double>(), 2e-4) << line;
+  const json* correspondences = member(object, "correspondences");
+  ASSERT_TRUE(correspondences && correspondences->is_array()) << line;
+  for (const json& c : *correspondences)
   {
-    ASSERT_TRUE(c.isArray() && c.array.size() == 4u) << line;
-    for (const Json& v : c.array)
-      EXPECT_TRUE(v.isNumber()) << line;
+    ASSERT_TRUE(c.is_array() && c.size() == 4u) << line;
+    for (const json& v : c)
+      EXPECT_TRUE(v.is_number()) << line;
   }
 }
 
-/// Parses JSON lines and checks the documented fields of each frame.
-std::vector<Json> parseFrames(const std::string& text)
+/// A number member's value, or NaN when it is missing or no number.
+double numberOf(const json& object, const std::string& key)
 {
-  std::vector<Json> frames;
+  const json* value = member(object, key);
+  return value && value->is_number() ? value->get<double>() : std::nan("");
+}
+
+/// Parses JSON lines and checks the documented fields of each frame.
+std::vector<json> parseFrames(const std::string& text)
+{
+  std::vector<json> frames;
   const std::vector<std::string> lines = splitLines(text);
   for (std::size_t i = 0; i < lines.size(); ++i)
   {
-    Json frame;
+    json frame;
     std::string error;
-    EXPECT_TRUE(JsonParser::parse(lines[i], frame, error)) << "line " << i << ": " << error << "\n" << lines[i];
-    EXPECT_TRUE(frame.isObject()) << lines[i];
-    const Json* index = frame.get("frame");
-    const Json* time = frame.get("time_ms");
-    const Json* iteration = frame.get("iteration");
-    const Json* iterations = frame.get("iterations");
-    const Json* objects = frame.get("objects");
-    EXPECT_TRUE(index && index->isNumber() && index->number == static_cast<double>(i)) << lines[i];
-    EXPECT_TRUE(time && time->isNumber() && time->number >= 0.0) << lines[i];
-    EXPECT_TRUE(iteration && iteration->isNumber()) << lines[i];
+    EXPECT_TRUE(parseStrictJson(lines[i], frame, error)) << "line " << i << ": " << error << "\n" << lines[i];
+    EXPECT_TRUE(frame.is_object()) << lines[i];
+    const json* index = member(frame, "frame");
+    const json* time = member(frame, "time_ms");
+    const json* iteration = member(frame, "iteration");
+    const json* iterations = member(frame, "iterations");
+    const json* objects = member(frame, "objects");
+    EXPECT_TRUE(index && index->is_number() && index->get<double>() == static_cast<double>(i)) << lines[i];
+    EXPECT_TRUE(time && time->is_number() && time->get<double>() >= 0.0) << lines[i];
+    EXPECT_TRUE(iteration && iteration->is_number()) << lines[i];
     // Without a frame budget every frame runs one whole iteration (none when skipped).
-    EXPECT_TRUE(iterations && iterations->isNumber() &&
-                iterations->number == (frame.get("skipped") ? 0.0 : 1.0)) << lines[i];
-    EXPECT_TRUE(objects && objects->isArray()) << lines[i];
-    if (objects && objects->isArray())
-      for (const Json& object : objects->array)
+    EXPECT_TRUE(iterations && iterations->is_number() &&
+                iterations->get<double>() == (member(frame, "skipped") ? 0.0 : 1.0)) << lines[i];
+    EXPECT_TRUE(objects && objects->is_array()) << lines[i];
+    if (objects && objects->is_array())
+      for (const json& object : *objects)
         checkObject(object, lines[i]);
     frames.push_back(std::move(frame));
   }
@@ -335,10 +343,10 @@ TEST_F(OfflineRunner, OneWellFormedJsonLinePerFrameOfADirectory)
   const std::string text = readFile(output);
   ASSERT_FALSE(text.empty());
   EXPECT_EQ(text.back(), '\n');
-  const std::vector<Json> frames = parseFrames(text);
+  const std::vector<json> frames = parseFrames(text);
   ASSERT_EQ(frames.size(), static_cast<std::size_t>(kSceneFrames));
   for (std::size_t i = 1; i < frames.size(); ++i)
-    EXPECT_GT(frames[i].get("iteration")->number, frames[i - 1].get("iteration")->number);
+    EXPECT_GT(numberOf(frames[i], "iteration"), numberOf(frames[i - 1], "iteration"));
 }
 
 TEST_F(OfflineRunner, FramesCapsADirectoryAndJsonGoesToStandardOutput)
@@ -425,14 +433,15 @@ TEST_F(OfflineRunner, AnUnreadableFrameIsAWarningAndASkippedLine)
   writeFile(dir / "notes.txt", "ignored: not an image file name");
   const RunResult r = run(fastArgs(dir));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::vector<Json> frames = parseFrames(r.out);
+  const std::vector<json> frames = parseFrames(r.out);
   ASSERT_EQ(frames.size(), 4u);
-  const Json* skipped = frames[2].get("skipped");
-  ASSERT_TRUE(skipped && skipped->isString());
-  EXPECT_NE(skipped->string.find("frame_001b.png"), std::string::npos);
-  EXPECT_TRUE(frames[2].get("objects")->array.empty());
-  EXPECT_EQ(frames[2].get("iteration")->number, frames[1].get("iteration")->number);
-  EXPECT_EQ(frames[1].get("skipped"), nullptr);
+  const json* skipped = member(frames[2], "skipped");
+  ASSERT_TRUE(skipped && skipped->is_string());
+  EXPECT_NE(skipped->get<std::string>().find("frame_001b.png"), std::string::npos);
+  const json* objects = member(frames[2], "objects");
+  EXPECT_TRUE(objects && objects->is_array() && objects->empty());
+  EXPECT_EQ(numberOf(frames[2], "iteration"), numberOf(frames[1], "iteration"));
+  EXPECT_EQ(member(frames[1], "skipped"), nullptr);
   const std::vector<std::string> warnings = splitLines(r.err);
   ASSERT_EQ(warnings.size(), 1u) << r.err;
   EXPECT_EQ(warnings[0].rfind("amcr_offline: warning: ", 0), 0u) << warnings[0];
@@ -541,7 +550,7 @@ TEST_F(OfflineRunner, ATruncatedOrCorruptVideoKeepsItsFramesAndSaysHowFarItWasRe
     writeFile(root_ / video.first, video.second);
     const RunResult r = run(fastArgs(root_ / video.first));
     EXPECT_EQ(r.exit_code, 3) << video.first << ": " << r.err;
-    const std::vector<Json> frames = parseFrames(r.out);
+    const std::vector<json> frames = parseFrames(r.out);
     EXPECT_GE(frames.size(), 1u) << video.first;
     EXPECT_LT(frames.size(), 10u) << video.first;
     const std::vector<std::string> lines = splitLines(r.err);

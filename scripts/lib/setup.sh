@@ -25,7 +25,7 @@ AMCR_PACKAGES=(
   pluginlib-dev ros-message-generation libstd-srvs-dev libgeometry-msgs-dev libsensor-msgs-dev
   librostest-dev python3-rosbag python3-diagnostic-msgs python3-std-srvs python3-rosparam catkin-lint
   libimage-geometry-dev libvisualization-msgs-dev python3-visualization-msgs python3-tf2-ros
-  libopencv-contrib-dev libopencv-shape-dev nlohmann-json3-dev libyaml-cpp-dev
+  libopencv-contrib-dev libopencv-shape-dev nlohmann-json3-dev libyaml-cpp-dev libboost-program-options-dev
 )
 
 # scripts/fuzz: clang and its libFuzzer runtime. On bookworm the runtime (libclang_rt.fuzzer) is in

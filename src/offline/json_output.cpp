@@ -5,6 +5,9 @@
 #include <locale>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace amcr
 {
@@ -12,168 +15,109 @@ namespace offline
 {
 namespace
 {
-/// Length of the valid UTF-8 sequence starting at text[i], or 0 when invalid.
-std::size_t utf8SequenceLength(const std::string& text, std::size_t i)
+/// The JSON text of a string, integer or boolean, by nlohmann's serializer.
+/// Invalid UTF-8 (a file name can hold any bytes) becomes U+FFFD instead of
+/// an exception, so the line is always valid JSON.
+std::string dumped(const nlohmann::json& value)
 {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
-  const unsigned char lead = byte(i);
-  std::size_t length = 0;
-  unsigned char low = 0x80, high = 0xBF;  // range of the second byte
-  if (lead >= 0xC2 && lead <= 0xDF)
-    length = 2;
-  else if (lead >= 0xE0 && lead <= 0xEF)
-  {
-    length = 3;
-    if (lead == 0xE0)
-      low = 0xA0;  // no overlong forms
-    if (lead == 0xED)
-      high = 0x9F;  // no surrogates
-  }
-  else if (lead >= 0xF0 && lead <= 0xF4)
-  {
-    length = 4;
-    if (lead == 0xF0)
-      low = 0x90;  // no overlong forms
-    if (lead == 0xF4)
-      high = 0x8F;  // nothing above U+10FFFF
-  }
-  else
-    return 0;
-  if (i + length > text.size())
-    return 0;
-  if (byte(i + 1) < low || byte(i + 1) > high)
-    return 0;
-  for (std::size_t k = 2; k < length; ++k)
-    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF)
-      return 0;
-  return length;
+  return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-void appendAffine(std::string& out, const Affine& a)
+/// `[a, b, ...]` from elements that are JSON text already.
+std::string jsonArray(const std::vector<std::string>& elements)
 {
-  out += "[[";
-  for (int row = 0; row < 2; ++row)
+  std::string out = "[";
+  for (std::size_t i = 0; i < elements.size(); ++i)
   {
-    if (row > 0)
-      out += "], [";
-    for (int col = 0; col < 3; ++col)
-    {
-      if (col > 0)
-        out += ", ";
-      out += jsonNumber(a(row, col), kAffineDecimals);
-    }
-  }
-  out += "]]";
-}
-
-void appendHomography(std::string& out, const Homography& h)
-{
-  out += "[[";
-  for (int row = 0; row < 3; ++row)
-  {
-    if (row > 0)
-      out += "], [";
-    for (int col = 0; col < 3; ++col)
-    {
-      if (col > 0)
-        out += ", ";
-      out += jsonNumber(h(row, col), kHomographyDecimals);
-    }
-  }
-  out += "]]";
-}
-
-void appendObject(std::string& out, const RecognizedObject& object)
-{
-  out += "{\"label\": " + jsonString(object.label);
-  out += ", \"instance\": " + jsonString(object.instance);
-  out += ", \"track_id\": " + std::to_string(object.track_id);
-  out += ", \"state\": " + jsonString(toString(object.state));
-  out += ", \"score\": " + jsonNumber(object.score, kScoreDecimals);
-  out += ", \"support\": " + std::to_string(object.support);
-  out += ", \"image_to_prototype\": ";
-  appendAffine(out, object.image_to_prototype);
-  out += ", \"prototype_to_image\": ";
-  appendAffine(out, object.prototype_to_image);
-  out += ", \"homography\": ";
-  appendHomography(out, object.homography);
-  out += std::string(", \"homography_valid\": ") + (object.homography_valid ? "true" : "false");
-  out += ", \"anisotropy\": " + jsonNumber(object.anisotropy, kAnisotropyDecimals);
-  out += ", \"viewing_angle_deg\": " + jsonNumber(object.viewing_angle_deg, kAngleDecimals);
-  out += ", \"correspondences\": [";
-  for (std::size_t i = 0; i < object.correspondences.size(); ++i)
-  {
-    const Correspondence& c = object.correspondences[i];
     if (i > 0)
       out += ", ";
-    out += "[" + jsonNumber(c.image.x, kPixelDecimals) + ", " + jsonNumber(c.image.y, kPixelDecimals) + ", " +
-           jsonNumber(c.prototype.x, kPixelDecimals) + ", " + jsonNumber(c.prototype.y, kPixelDecimals) + "]";
+    out += elements[i];
   }
-  out += "]}";
+  return out + "]";
+}
+
+/// `{"key": value, ...}` with the members in the order they are added.
+/// nlohmann::json cannot write the line itself: its objects sort their keys
+/// (ordered_json came in 3.9, Ubuntu 20.04 has 3.7), its dump puts no space
+/// after ',' and ':', and it writes doubles in shortest form, where the
+/// output has a fixed number of decimals per field.
+class JsonObject
+{
+public:
+  /// A member whose value is JSON text already.
+  JsonObject& member(const std::string& key, const std::string& json)
+  {
+    if (text_.size() > 1)
+      text_ += ", ";
+    text_ += dumped(key) + ": " + json;
+    return *this;
+  }
+  JsonObject& value(const std::string& key, const nlohmann::json& content) { return member(key, dumped(content)); }
+  JsonObject& number(const std::string& key, double content, int decimals)
+  {
+    return member(key, jsonNumber(content, decimals));
+  }
+  std::string text() const { return text_ + "}"; }
+
+private:
+  std::string text_ = "{";
+};
+
+/// A matrix as an array of rows, each entry with `decimals` decimals.
+template <int Rows, int Cols>
+std::string jsonMatrix(const cv::Matx<double, Rows, Cols>& m, int decimals)
+{
+  std::vector<std::string> rows;
+  for (int row = 0; row < Rows; ++row)
+  {
+    std::vector<std::string> entries;
+    for (int col = 0; col < Cols; ++col)
+      entries.push_back(jsonNumber(m(row, col), decimals));
+    rows.push_back(jsonArray(entries));
+  }
+  return jsonArray(rows);
+}
+
+std::string jsonCorrespondence(const Correspondence& c)
+{
+  return jsonArray({jsonNumber(c.image.x, kPixelDecimals), jsonNumber(c.image.y, kPixelDecimals),
+                    jsonNumber(c.prototype.x, kPixelDecimals), jsonNumber(c.prototype.y, kPixelDecimals)});
+}
+
+std::string objectJson(const RecognizedObject& object)
+{
+  std::vector<std::string> correspondences;
+  for (const Correspondence& c : object.correspondences)
+    correspondences.push_back(jsonCorrespondence(c));
+  return JsonObject()
+      .value("label", object.label)
+      .value("instance", object.instance)
+      .value("track_id", object.track_id)
+      .value("state", toString(object.state))
+      .number("score", object.score, kScoreDecimals)
+      .value("support", object.support)
+      .member("image_to_prototype", jsonMatrix(object.image_to_prototype, kAffineDecimals))
+      .member("prototype_to_image", jsonMatrix(object.prototype_to_image, kAffineDecimals))
+      .member("homography", jsonMatrix(object.homography, kHomographyDecimals))
+      .value("homography_valid", object.homography_valid)
+      .number("anisotropy", object.anisotropy, kAnisotropyDecimals)
+      .number("viewing_angle_deg", object.viewing_angle_deg, kAngleDecimals)
+      .member("correspondences", jsonArray(correspondences))
+      .text();
+}
+
+std::string objectsJson(const std::vector<RecognizedObject>& objects)
+{
+  std::vector<std::string> elements;
+  for (const RecognizedObject& object : objects)
+    elements.push_back(objectJson(object));
+  return jsonArray(elements);
 }
 }  // namespace
 
 std::string jsonString(const std::string& text)
 {
-  static const char* const kHex = "0123456789abcdef";
-  std::string out;
-  out.reserve(text.size() + 2);
-  out += '"';
-  for (std::size_t i = 0; i < text.size();)
-  {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x80)
-    {
-      const std::size_t length = utf8SequenceLength(text, i);
-      if (length == 0)
-      {
-        out += "\\ufffd";
-        ++i;
-      }
-      else
-      {
-        out.append(text, i, length);
-        i += length;
-      }
-      continue;
-    }
-    switch (c)
-    {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\b':
-        out += "\\b";
-        break;
-      case '\f':
-        out += "\\f";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (c < 0x20 || c == 0x7F)
-        {
-          out += "\\u00";
-          out += kHex[c >> 4];
-          out += kHex[c & 0xF];
-        }
-        else
-          out += static_cast<char>(c);
-    }
-    ++i;
-  }
-  out += '"';
-  return out;
+  return dumped(text);
 }
 
 std::string jsonNumber(double value, int decimals)
@@ -192,34 +136,28 @@ std::string jsonNumber(double value, int decimals)
 
 std::string frameJson(long frame, const RecognitionResult& result)
 {
-  std::string out = "{\"frame\": " + std::to_string(frame);
-  out += ", \"time_ms\": " + jsonNumber(result.time_ms, kTimeDecimals);
-  out += ", \"iteration\": " + std::to_string(result.iteration);
-  out += ", \"iterations\": " + jsonNumber(result.iterations, kShareDecimals);
-  out += ", \"mean_m_particles\": " + jsonNumber(result.mean_m_particles, 1);
-  out += ", \"objects\": [";
-  for (std::size_t i = 0; i < result.objects.size(); ++i)
-  {
-    if (i > 0)
-      out += ", ";
-    appendObject(out, result.objects[i]);
-  }
-  out += "], \"lost\": [";
-  for (std::size_t i = 0; i < result.lost.size(); ++i)
-  {
-    if (i > 0)
-      out += ", ";
-    appendObject(out, result.lost[i]);
-  }
-  out += "]}";
-  return out;
+  return JsonObject()
+      .value("frame", frame)
+      .number("time_ms", result.time_ms, kTimeDecimals)
+      .value("iteration", result.iteration)
+      .number("iterations", result.iterations, kShareDecimals)
+      .number("mean_m_particles", result.mean_m_particles, 1)
+      .member("objects", objectsJson(result.objects))
+      .member("lost", objectsJson(result.lost))
+      .text();
 }
 
 std::string skippedFrameJson(long frame, long iteration, const std::string& reason)
 {
-  return "{\"frame\": " + std::to_string(frame) + ", \"time_ms\": " + jsonNumber(0.0, kTimeDecimals) +
-         ", \"iteration\": " + std::to_string(iteration) + ", \"iterations\": 0, \"objects\": [], \"lost\": [], \"skipped\": " + jsonString(reason) +
-         "}";
+  return JsonObject()
+      .value("frame", frame)
+      .number("time_ms", 0.0, kTimeDecimals)
+      .value("iteration", iteration)
+      .value("iterations", 0)
+      .member("objects", "[]")
+      .member("lost", "[]")
+      .value("skipped", reason)
+      .text();
 }
 
 void writeJsonLine(std::ostream& out, const std::string& json, const std::string& destination)

@@ -1,5 +1,6 @@
-// amcr_offline's output: one JSON object per input frame, one per line,
-// written by hand (no JSON library in the dependencies):
+// amcr_offline's output: one JSON object per input frame, one per line; the
+// strings, integers and booleans by nlohmann's serializer, the layout (key
+// order, ", " and ": ") and the fixed-decimal numbers here:
 //   {"frame": 0, "time_ms": 3.100, "iteration": 1, "objects": [{"label": "bird-1",
 //    "track_id": 1, "state": "held", "score": 0.9300, "support": 17,
 //    "image_to_prototype": [[a, b, c], [d, e, f]], "prototype_to_image": [[a, b, c], [d, e, f]],
@@ -30,9 +31,11 @@ constexpr int kAngleDecimals = 2;       ///< viewing_angle_deg, degrees
 constexpr int kPixelDecimals = 2;   ///< correspondence coordinates, px
 constexpr int kShareDecimals = 3;   ///< iterations (share of an iteration run on a frame)
 
-/// A quoted JSON string. Escapes '"', '\\' and control characters (as \n,
-/// \t, ... or \u00XX); valid UTF-8 passes through, each byte of an invalid
-/// UTF-8 sequence becomes U+FFFD, so the output is always valid JSON.
+/// A quoted JSON string (nlohmann's serializer). Escapes '"', '\\' and the
+/// control characters U+0000..U+001F (as \n, \t, ... or \u00XX); valid UTF-8
+/// passes through, each ill-formed part of UTF-8 (a byte that cannot start a
+/// character, a character cut short) becomes one U+FFFD (written as the
+/// character itself), so the output is always valid JSON.
 std::string jsonString(const std::string& text);
 
 /// A number in fixed notation with `decimals` digits after the point,

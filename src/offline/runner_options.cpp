@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cstdlib>
+#include <charconv>
 #include <limits>
 #include <set>
+
+#include <boost/program_options.hpp>
+
+namespace po = boost::program_options;
 
 namespace amcr
 {
@@ -13,21 +16,14 @@ namespace offline
 {
 namespace
 {
-/// Parses a non-negative decimal integer (digits only) that fits `max`.
-bool parseUnsigned(const std::string& text, std::uint64_t max, std::uint64_t& out)
+/// Parses a non-negative decimal integer (digits only) in [min, max].
+bool parseUnsigned(const std::string& text, std::uint64_t min, std::uint64_t max, std::uint64_t& out)
 {
-  if (text.empty() || text.size() > 20)
-    return false;
   std::uint64_t value = 0;
-  for (const char c : text)
-  {
-    if (c < '0' || c > '9')
-      return false;
-    const std::uint64_t digit = static_cast<std::uint64_t>(c - '0');
-    if (value > (max - digit) / 10)
-      return false;
-    value = value * 10 + digit;
-  }
+  const char* end = text.data() + text.size();
+  const std::from_chars_result parsed = std::from_chars(text.data(), end, value);
+  if (parsed.ec != std::errc() || parsed.ptr != end || value < min || value > max)
+    return false;
   out = value;
   return true;
 }
@@ -46,6 +42,86 @@ std::string extension(const std::string& path)
     return "";
   return lower(path.substr(dot));
 }
+
+bool startsWithDashes(const std::string& text) { return text.compare(0, 2, "--") == 0; }
+
+/// The options with a value, by name without the dashes; --help (-h) has none.
+const char* const kValueOptions[] = {"prototypes", "input", "config", "seed", "frames", "output", "overlay"};
+
+/// Splits the command line with program_options: "--name value" and
+/// "--name=value", no abbreviations, "-h" for --help. Unknown options and
+/// stray arguments are returned too (unregistered or positional), so that
+/// parseRunnerOptions names them in the runner's words, in the order given.
+std::vector<po::option> splitOptions(const std::vector<std::string>& args)
+{
+  po::options_description known;
+  known.add_options()("help,h", "");
+  for (const char* name : kValueOptions)
+    known.add_options()(name, po::value<std::string>(), "");
+  namespace style = po::command_line_style;
+  try
+  {
+    return po::command_line_parser(args)
+        .options(known)
+        .style(style::allow_long | style::long_allow_adjacent | style::long_allow_next | style::allow_short |
+               style::short_allow_next | style::allow_dash_for_short)
+        .allow_unregistered()
+        .run()
+        .options;
+  }
+  catch (const po::invalid_command_line_syntax& e)
+  {
+    const std::string name = e.get_option_name();
+    switch (e.kind())
+    {
+      case po::invalid_command_line_syntax::missing_parameter:
+        throw UsageError("option " + name + " needs a value");
+      case po::invalid_command_line_syntax::empty_adjacent_parameter:
+        throw UsageError("option " + name + " needs a non-empty value");
+      case po::invalid_command_line_syntax::extra_parameter:
+        throw UsageError("option " + name + " takes no value");
+      default:
+        throw UsageError(e.what());
+    }
+  }
+  catch (const po::error& e)
+  {
+    throw UsageError(e.what());
+  }
+}
+
+/// Sets the field of option `name` ("--seed") from its non-empty `value`.
+void setOption(RunnerOptions& options, const std::string& name, const std::string& value)
+{
+  if (name == "--prototypes")
+    options.prototypes = value;
+  else if (name == "--input")
+    options.input = value;
+  else if (name == "--config")
+    options.config = value;
+  else if (name == "--output")
+    options.output = value;
+  else if (name == "--overlay")
+  {
+    if (overlayFourcc(value).empty())
+      throw UsageError("--overlay '" + value + "': unsupported video type (use .avi for MJPG or .mp4 for mp4v)");
+    options.overlay = value;
+  }
+  else if (name == "--seed")
+  {
+    if (!parseUnsigned(value, 0, std::numeric_limits<std::uint64_t>::max(), options.seed))
+      throw UsageError("--seed '" + value + "': expected an integer in [0, 18446744073709551615]");
+    options.has_seed = true;
+  }
+  else if (name == "--frames")
+  {
+    std::uint64_t frames = 0;
+    if (!parseUnsigned(value, 1, 1000000000, frames))
+      throw UsageError("--frames '" + value + "': expected an integer in [1, 1000000000]");
+    options.frames = static_cast<long>(frames);
+    options.has_frames = true;
+  }
+}
 }  // namespace
 
 std::string overlayFourcc(const std::string& path)
@@ -62,71 +138,29 @@ RunnerOptions parseRunnerOptions(const std::vector<std::string>& args)
 {
   RunnerOptions options;
   std::set<std::string> seen;
-  for (std::size_t i = 0; i < args.size(); ++i)
+  for (const po::option& option : splitOptions(args))
   {
-    const std::string& arg = args[i];
-    if (arg == "--help" || arg == "-h")
+    const std::string token = option.original_tokens.empty() ? "" : option.original_tokens.front();
+    if (option.position_key >= 0 || (option.unregistered && !startsWithDashes(token)))
+      throw UsageError("unexpected argument '" + token + "' (options start with --)");
+    if (option.unregistered)
+      throw UsageError("unknown option '" + token.substr(0, token.find('=')) + "'");
+    if (option.string_key == "help")
     {
       options.help = true;
       continue;
     }
-    if (arg.size() < 3 || arg.compare(0, 2, "--") != 0)
-      throw UsageError("unexpected argument '" + arg + "' (options start with --)");
-
-    std::string name = arg;
-    std::string value;
-    bool has_value = false;
-    const std::size_t equals = arg.find('=');
-    if (equals != std::string::npos)
-    {
-      name = arg.substr(0, equals);
-      value = arg.substr(equals + 1);
-      has_value = true;
-    }
-    static const std::set<std::string> kKnown = {"--prototypes", "--input",  "--config", "--seed",
-                                                 "--frames",     "--output", "--overlay"};
-    if (kKnown.count(name) == 0)
-      throw UsageError("unknown option '" + name + "'");
+    const std::string name = "--" + option.string_key;
     if (!seen.insert(name).second)
       throw UsageError("option " + name + " given twice");
-    if (!has_value)
-    {
-      if (i + 1 >= args.size() || args[i + 1].compare(0, 2, "--") == 0)
-        throw UsageError("option " + name + " needs a value");
-      value = args[++i];
-    }
+    // program_options takes the next word as the value even when it is an
+    // option ("--input --frames 3"): that is an option whose value is missing.
+    if (option.original_tokens.size() == 2 && startsWithDashes(option.original_tokens[1]))
+      throw UsageError("option " + name + " needs a value");
+    const std::string value = option.value.empty() ? "" : option.value.front();
     if (value.empty())
       throw UsageError("option " + name + " needs a non-empty value");
-
-    if (name == "--prototypes")
-      options.prototypes = value;
-    else if (name == "--input")
-      options.input = value;
-    else if (name == "--config")
-      options.config = value;
-    else if (name == "--output")
-      options.output = value;
-    else if (name == "--overlay")
-    {
-      if (overlayFourcc(value).empty())
-        throw UsageError("--overlay '" + value + "': unsupported video type (use .avi for MJPG or .mp4 for mp4v)");
-      options.overlay = value;
-    }
-    else if (name == "--seed")
-    {
-      if (!parseUnsigned(value, std::numeric_limits<std::uint64_t>::max(), options.seed))
-        throw UsageError("--seed '" + value + "': expected an integer in [0, 18446744073709551615]");
-      options.has_seed = true;
-    }
-    else if (name == "--frames")
-    {
-      std::uint64_t frames = 0;
-      const std::uint64_t max = 1000000000;
-      if (!parseUnsigned(value, max, frames) || frames < 1)
-        throw UsageError("--frames '" + value + "': expected an integer in [1, 1000000000]");
-      options.frames = static_cast<long>(frames);
-      options.has_frames = true;
-    }
+    setOption(options, name, value);
   }
   if (!options.help)
   {

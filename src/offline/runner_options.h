@@ -34,10 +34,12 @@ struct RunnerOptions
 /// The default number of frames made from a single image.
 constexpr long kDefaultSingleImageFrames = 100;
 
-/// Parses the arguments after the program name. Accepts "--name value" and
-/// "--name=value". Throws UsageError for an unknown option, a missing or
-/// malformed value, an option given twice, a stray argument, a missing
-/// required option (unless --help), or an overlay file of unknown type.
+/// Parses the arguments after the program name (Boost.Program_options splits
+/// them). Accepts "--name value" and "--name=value", never an abbreviated
+/// name; "--" ends the options, so what follows it is a stray argument.
+/// Throws UsageError for an unknown option, a missing or malformed value, an
+/// option given twice, a stray argument, a missing required option (unless
+/// --help), or an overlay file of unknown type.
 RunnerOptions parseRunnerOptions(const std::vector<std::string>& args);
 
 /// The --help text.
