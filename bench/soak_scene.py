@@ -43,6 +43,31 @@ def write_prototypes(folder):
     return sorted(PROTOTYPES)
 
 
+LARGE_MEMORY = 70  # prototypes of the folder a reload of a larger memory loads
+
+
+def random_silhouette(rng, size=200):
+    """A white polygon on black, its corners at random radii and even angles: a shape unlike the
+    prototypes, for filling a larger memory."""
+    corners = int(rng.integers(5, 12))
+    angles = np.sort(rng.uniform(0.0, 2.0 * math.pi, corners))
+    radii = rng.uniform(0.35, 0.9, corners) * size * 0.45
+    points = np.stack([size / 2 + radii * np.cos(angles), size / 2 + radii * np.sin(angles)], axis=1)
+    image = np.zeros((size, size), np.uint8)
+    cv2.fillPoly(image, [np.round(points).astype(np.int32)], 255)
+    return image
+
+
+def write_large_folder(folder, seed=1):
+    """The three silhouettes and drawn ones, LARGE_MEMORY in all: the memory of the reload that
+    builds as long as a first start of a mid-sized memory does."""
+    write_prototypes(folder)
+    rng = np.random.default_rng(seed)
+    for i in range(LARGE_MEMORY - len(PROTOTYPES)):
+        cv2.imwrite(os.path.join(folder, "drawn-%02d.png" % i), random_silhouette(rng))
+    return LARGE_MEMORY
+
+
 def write_unusable_folder(folder):
     """A folder that ~load_prototypes must refuse: a truncated PNG and a text file, no usable image."""
     os.makedirs(folder, exist_ok=True)
