@@ -6,6 +6,10 @@
 #include <exception>
 #include <utility>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include "amcr/errors.h"
 #include "amcr/parallel_for.h"
 #include "recognizer_ros.h"
@@ -24,6 +28,17 @@ bool sameLabelTable(const amcr::PrototypeMemory& a, const amcr::PrototypeMemory&
     if (a[i].instance() != b[i].instance() || a[i].label() != b[i].label())
       return false;
   return true;
+}
+
+/// Gives the pages a replaced memory freed back to the system. glibc keeps
+/// freed memory in the allocating thread's arena, and a rebuild allocates on
+/// its own thread: without this, the process would keep the high-water mark
+/// of the largest memory it ever held (tens to hundreds of MB).
+void returnFreedMemory()
+{
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start)
@@ -133,6 +148,8 @@ amcr::LoadPrototypes::Response RecognizerRos::loadPrototypes(const std::string& 
     response.message = commit(prepared);
     response.success = response.message.empty();
     response.num_prototypes = response.success ? static_cast<int>(prepared.prototypes) : 0;
+    prepared = PreparedSwap();  // the replaced memory, if nothing else holds it, goes now
+    returnFreedMemory();
   }
   catch (const std::exception& e)
   {
@@ -158,6 +175,8 @@ std::string RecognizerRos::reconfigure(amcr::AMCRConfig& config, std::uint32_t l
     const amcr::SingleThreadScope beside_the_images;
     PreparedSwap prepared = prepareReconfigure(config, level);
     error = commit(prepared);
+    prepared = PreparedSwap();
+    returnFreedMemory();
   }
   catch (const std::exception& e)
   {
