@@ -287,25 +287,33 @@ TEST(EndToEndLowContrast, AFaintDefocusedPrintIsRecognized)
       << "the absolute threshold found the faint outline: the scene does not test the relative thresholds";
 }
 
-// The frontal candidates from the radial-profile index (profile_index: 1):
-// the sharp scenes of two targets are recognized as within the same bounds.
-TEST(EndToEndProfileIndex, RecognizesWithProposalsFromTheRadialProfile)
+/// The sharp scenes of two targets (the arrow and the star of the cases
+/// above) are recognized with `p`, within the corner tolerance and with no
+/// report of another label; `what` names the setting in the log.
+void expectSharpTargetsRecognized(const amcr::Params& p, const std::string& what)
 {
   for (const Target& t : {kArrow101, Target{ShapeId::kStar, {340, 240}, 110 * M_PI / 180, 0.8, 0.9, 0.15, 103}})
   {
     amcr::Affine truth;
     const std::vector<cv::Mat> frames = renderTarget(t, truth);
-    amcr::Params p = params();
-    p.profile_index = true;
     amcr::Recognizer recognizer(p, memory());
     int wrong_reports = 0;
     const std::string label = amcr_test::shapeName(t.shape);
     const int first_correct = firstCorrect(recognizer, frames, label, truth, wrong_reports);
-    std::cout << "[ e2e      ] profile index, " << label << ": first correct at iteration " << first_correct << ", "
+    std::cout << "[ e2e      ] " << what << ", " << label << ": first correct at iteration " << first_correct << ", "
               << wrong_reports << " reports of other labels" << std::endl;
-    EXPECT_GT(first_correct, 0) << label << " never reported within " << kCornerTolerance << " px";
-    EXPECT_EQ(wrong_reports, 0) << label;
+    EXPECT_GT(first_correct, 0) << what << ": " << label << " never reported within " << kCornerTolerance << " px";
+    EXPECT_EQ(wrong_reports, 0) << what << ": " << label;
   }
+}
+
+// The frontal candidates from the radial-profile index (profile_index: 1):
+// the sharp scenes of two targets are recognized as within the same bounds.
+TEST(EndToEndProfileIndex, RecognizesWithProposalsFromTheRadialProfile)
+{
+  amcr::Params p = params();
+  p.profile_index = true;
+  expectSharpTargetsRecognized(p, "profile index");
 }
 
 // The normalised mixture form of eq. 5 (likelihood_form: mixture): the
@@ -313,21 +321,9 @@ TEST(EndToEndProfileIndex, RecognizesWithProposalsFromTheRadialProfile)
 // its invalid rays were weighed as densities too, it recognized nothing.
 TEST(EndToEndMixtureForm, RecognizesTheDrawnTargets)
 {
-  for (const Target& t : {kArrow101, Target{ShapeId::kStar, {340, 240}, 110 * M_PI / 180, 0.8, 0.9, 0.15, 103}})
-  {
-    amcr::Affine truth;
-    const std::vector<cv::Mat> frames = renderTarget(t, truth);
-    amcr::Params p = params();
-    p.likelihood_form = amcr::LikelihoodForm::kMixture;
-    amcr::Recognizer recognizer(p, memory());
-    int wrong_reports = 0;
-    const std::string label = amcr_test::shapeName(t.shape);
-    const int first_correct = firstCorrect(recognizer, frames, label, truth, wrong_reports);
-    std::cout << "[ e2e      ] mixture form, " << label << ": first correct at iteration " << first_correct << ", "
-              << wrong_reports << " reports of other labels" << std::endl;
-    EXPECT_GT(first_correct, 0) << label << " never reported within " << kCornerTolerance << " px";
-    EXPECT_EQ(wrong_reports, 0) << label;
-  }
+  amcr::Params p = params();
+  p.likelihood_form = amcr::LikelihoodForm::kMixture;
+  expectSharpTargetsRecognized(p, "mixture form");
 }
 
 // A look-alike: an oval prototype joins the three, and over clutter a 96 px
