@@ -148,8 +148,7 @@ amcr::LoadPrototypes::Response RecognizerRos::loadPrototypes(const std::string& 
     response.message = commit(prepared);
     response.success = response.message.empty();
     response.num_prototypes = response.success ? static_cast<int>(prepared.prototypes) : 0;
-    prepared = PreparedSwap();  // the replaced memory, if nothing else holds it, goes now
-    returnFreedMemory();
+    returnFreedMemory();  // commit() has destroyed the swap, and the replaced memory with it
   }
   catch (const std::exception& e)
   {
@@ -175,7 +174,6 @@ std::string RecognizerRos::reconfigure(amcr::AMCRConfig& config, std::uint32_t l
     const amcr::SingleThreadScope beside_the_images;
     PreparedSwap prepared = prepareReconfigure(config, level);
     error = commit(prepared);
-    prepared = PreparedSwap();
     returnFreedMemory();
   }
   catch (const std::exception& e)
