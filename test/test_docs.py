@@ -230,11 +230,11 @@ def check_paths(path, text):
     return problems
 
 
-def commands(code_lines):
-    """The commands of a shell code block: continuation lines joined, here-documents, comments and
-    prompts dropped, split at &&, ||, ; and |."""
-    joined, pending, heredoc = [], "", None
-    for line in code_lines:
+def commands(code_lines, first_line=1):
+    """The commands of a shell code block as (line number, command): continuation lines joined,
+    here-documents and comments dropped, split at &&, ||, ; and |."""
+    joined, pending, pending_line, heredoc = [], "", None, None
+    for number, line in enumerate(code_lines, first_line):
         if heredoc is not None:
             if line.strip() == heredoc:
                 heredoc = None
@@ -243,19 +243,21 @@ def commands(code_lines):
         if marker:
             heredoc = marker.group(1)
         line = re.sub(r"(^|\s)#.*$", "", line).rstrip()
+        if pending_line is None:
+            pending_line = number
         if line.endswith("\\"):
             pending += line[:-1] + " "
             continue
-        joined.append(pending + line)
-        pending = ""
+        joined.append((pending_line, pending + line))
+        pending, pending_line = "", None
     if pending:
-        joined.append(pending)
+        joined.append((pending_line, pending))
     result = []
-    for line in joined:
+    for number, line in joined:
         for part in re.split(r"&&|\|\||;|\|", line):
             part = part.strip()
             if part:
-                result.append(part)
+                result.append((number, part))
     return result
 
 
@@ -359,7 +361,7 @@ def check_commands(path, text, inline_too=True):
     problems = []
     executables = rosrun_executables()
     prose, blocks = split_markdown(text)
-    found = [(start, command) for start, lines in blocks for command in commands(lines)]
+    found = [item for start, lines in blocks for item in commands(lines, start)]
     if inline_too:
         # Inline code is a command when it starts with a ROS command, or runs a script with arguments
         # (`bench/report.py` alone names a file).
@@ -455,7 +457,7 @@ class Documents(unittest.TestCase):
     def test_the_readme_has_commands_to_check(self):
         # A README whose code blocks this test no longer understands would pass for nothing.
         _, blocks = split_markdown(read(README))
-        found = [c for _, lines in blocks for c in commands(lines)]
+        found = [c for start, lines in blocks for _, c in commands(lines, start)]
         self.assertTrue(any(c.startswith("scripts/") for c in found), found)
         self.assertTrue(any(c.startswith("roslaunch amcr ") for c in found), found)
         self.assertTrue(any(c.startswith("rosservice call ") for c in found), found)
