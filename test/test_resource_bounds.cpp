@@ -14,6 +14,7 @@
 #include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "amcr/resource_bounds.h"
+#include "amcr/table_stride_choice.h"
 #include "scene_drawing.h"
 
 namespace

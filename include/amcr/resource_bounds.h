@@ -34,11 +34,6 @@ constexpr std::int64_t kMaxParameterFileBytes = 1024 * 1024;
 /// Memory of all prototype lookup tables together, bytes (4 GiB).
 constexpr std::int64_t kMaxTableBytes = 4LL * 1024 * 1024 * 1024;
 
-/// The largest table one prototype at `prototype_size` and `table_stride`
-/// can need, bytes: the square of its side with the margin in nodes, times
-/// the direction bins.
-std::int64_t maxTableBytesPerPrototype(int prototype_size, int table_stride = 1);
-
 /// ParameterError when `v_particles` x `m_per_v` exceeds kMaxMParticles;
 /// `what` says where the M-particles per V come from (for the message).
 void checkParticleBound(std::int64_t v_particles, std::int64_t m_per_v, const std::string& what);

@@ -11,6 +11,11 @@
 
 namespace amcr
 {
+/// The largest table one prototype at `prototype_size` and `table_stride`
+/// can need, bytes: the square of its side with the margin in nodes, times
+/// the direction bins.
+std::int64_t maxTableBytesPerPrototype(int prototype_size, int table_stride = 1);
+
 struct TableStrideChoice
 {
   int stride = 1;               ///< the stride the tables are built at, table px [1, 4]

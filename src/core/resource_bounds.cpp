@@ -1,11 +1,8 @@
 #include "amcr/resource_bounds.h"
 
-#include <algorithm>
 #include <cstdio>
 
 #include "amcr/errors.h"
-#include "amcr/prototype.h"
-#include "amcr/ray_directions.h"
 
 namespace amcr
 {
@@ -15,13 +12,6 @@ namespace
 /// overflow: a PNG header may claim 2^32 - 1 pixels a side).
 bool productExceeds(std::int64_t a, std::int64_t b, std::int64_t bound) { return a > 0 && b > bound / a; }
 }  // namespace
-
-std::int64_t maxTableBytesPerPrototype(int prototype_size, int table_stride)
-{
-  const std::int64_t stride = std::max(1, table_stride);
-  const std::int64_t side = (prototype_size + 2LL * Prototype::tableMargin(prototype_size) + stride - 1) / stride;
-  return side * side * kDirectionBins;
-}
 
 void checkParticleBound(std::int64_t v_particles, std::int64_t m_per_v, const std::string& what)
 {

@@ -1,10 +1,20 @@
 #include "amcr/table_stride_choice.h"
 
+#include <algorithm>
+
 #include "amcr/prototype.h"
+#include "amcr/ray_directions.h"
 #include "amcr/resource_bounds.h"
 
 namespace amcr
 {
+std::int64_t maxTableBytesPerPrototype(int prototype_size, int table_stride)
+{
+  const std::int64_t stride = std::max(1, table_stride);
+  const std::int64_t side = (prototype_size + 2LL * Prototype::tableMargin(prototype_size) + stride - 1) / stride;
+  return side * side * kDirectionBins;
+}
+
 namespace
 {
 std::int64_t tableBytes(std::size_t prototype_count, const Params& params, int stride)
