@@ -6,8 +6,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "amcr/affine.h"
-#include "amcr/recognition_result.h"
+#include "amcr/base/affine.h"
+#include "amcr/extraction/recognition_result.h"
 
 namespace amcr
 {

@@ -3,11 +3,11 @@
 
 #include <algorithm>
 
-#include "amcr/discriminative_attention.h"
-#include "amcr/object_extractor.h"
-#include "amcr/parallel_for.h"
-#include "amcr/radial_scan.h"
-#include "amcr/resource_bounds.h"
+#include "amcr/base/parallel_for.h"
+#include "amcr/base/resource_bounds.h"
+#include "amcr/extraction/object_extractor.h"
+#include "amcr/filter/discriminative_attention.h"
+#include "amcr/scan/radial_scan.h"
 #include "amcr/working_scale.h"
 
 namespace amcr

@@ -22,9 +22,9 @@
 #include <opencv2/core.hpp>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "amcr/affine.h"
-#include "amcr/homography.h"
-#include "amcr/prototype.h"
+#include "amcr/base/affine.h"
+#include "amcr/base/homography.h"
+#include "amcr/memory/prototype.h"
 
 namespace amcr_ros
 {
