@@ -235,7 +235,7 @@ private:
                           const std::vector<ProposalCandidate>& candidates) const;
   /// The places of the memory the V-particle's rays look like (into
   /// work.candidates): its own rays, and with oblique view shapes on, its
-  /// rays read under one drawn view shape (particle_filter.cpp).
+  /// rays read under one drawn view shape (particle_filter_proposals.cpp).
   void findCandidates(const VParticle& v, const RadialScanner& scanner, VWorkspace& work) const;
   /// KLD-sampling (Fox 2003): how many M-particles the next generation of
   /// a V-particle needs, given `picks` drawn from the current one.
