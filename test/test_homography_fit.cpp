@@ -51,7 +51,7 @@ std::vector<cv::Point2d> discPolygon(const Disc& d)
 
 constexpr double kCornerTolerance = 1.5;   // px, largest corner error of the fitted homography
 constexpr double kAffineCannotExplain = 3.0;  // px: a best affine this far off at a corner needs the homography
-constexpr double kVerifyTolerance = 2.0;   // px, the object's score tolerance (object_extractor.cpp)
+constexpr double kVerifyTolerance = 2.0;   // px, the object's score tolerance (candidate_fit.cpp)
 
 /// A view of the prototype as a planar target: the prototype image's centre
 /// at distance `distance` (in focal lengths' units: focal = 1) on the optical

@@ -124,7 +124,7 @@ struct Params
   double discriminative_min_gain = 0.2;    ///< least expected log-likelihood ratio of a discriminative move, nats [0, 100]
   /// Competing clusters of V-particles, then look-alikes of tracked objects'
   /// prototypes (discriminative_places.h), fitted and verified on the image
-  /// per frame beside the groups' (object_extractor.cpp) [0, 64]; 0 = none
+  /// per frame beside the groups' (fit_starts.cpp) [0, 64]; 0 = none
   /// (and no look-alike pairs are found).
   int competing_fits = 4;
 
