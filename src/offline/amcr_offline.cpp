@@ -1,6 +1,7 @@
-// amcr_offline: Radial-AMCR on recorded data (issue 2, item 4). One JSON line
-// per input frame; optionally an overlay video. See usageText() for the
-// command line, the output and the exit codes.
+// amcr_offline: Radial-AMCR on recorded data, without ROS (for benchmarks,
+// tests and recordings at hand). One JSON line per input frame; optionally
+// an overlay video. See usageText() for the command line, the output and
+// the exit codes.
 //
 // Only this file decides exit codes: the library and the helpers throw.
 #include <cstdlib>

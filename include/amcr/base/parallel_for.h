@@ -1,6 +1,6 @@
 // Work spread over threads with a deterministic result: each index is one
 // independent piece of work that writes only its own data, so the output is
-// the same for any thread count (issue 16). OpenCV's parallel_for_ runs the
+// the same for any thread count. OpenCV's parallel_for_ runs the
 // workers (its backend: TBB or a thread pool); the thread count is bounded
 // per call, never by changing OpenCV's process-wide setting.
 //

@@ -1,4 +1,4 @@
-// The homography fit of a recognized object on the image (issue 13, part 2):
+// The homography fit of a recognized object on the image:
 // the same edge search along the outline's normals as the affine fit
 // (outline_fit.h), with a homography (8 degrees of freedom) fitted robustly
 // to the edges found, so that a planar shape seen in perspective lies on

@@ -1,5 +1,5 @@
 // Model selection between the affine and the homography fit of a recognized
-// object (issue 13, part 2): the affine stays the answer unless the outline
+// object: the affine stays the answer unless the outline
 // demands a perspective view.
 #pragma once
 

@@ -1,4 +1,5 @@
-// The objects' life cycle in one place (issue 15): each reported object
+// The objects' life cycle in one place, so that every instance in view keeps
+// one id from frame to frame: each reported object
 // continues a track or starts one; a track is tentative when first seen,
 // confirmed once reported in params.confirm_frames frames, held while it is
 // confirmed, the tracker follows it and its score is at least the decision

@@ -1,4 +1,4 @@
-// How obliquely a planar prototype is seen (issue 13, part 4): the
+// How obliquely a planar prototype is seen, reported with each object: the
 // anisotropy of the prototype -> image affine and the viewing angle it
 // implies under weak-perspective projection.
 #pragma once

@@ -1,4 +1,4 @@
-// The proposal index's k-d tree in the table cache (issue 16): with the
+// The proposal index's k-d tree in the table cache: with the
 // tables read from the cache, building the tree over a large memory's
 // entries (0.65 M for 70 prototypes) is most of the start-up. The tree is
 // stored as one cache file (the layout of table_cache.h, payload: FLANN's

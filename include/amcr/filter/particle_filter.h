@@ -8,7 +8,7 @@
 // draw of a recognizer is made here). The V-particles' iterations are
 // independent and run on params.num_threads threads; a V-particle's draws
 // come from its own stream, so the result is the same for any thread count
-// (issue 16).
+// (same seed, same output, on any machine).
 //
 // What it learns from the result extraction comes in explicitly: evidence
 // per V-particle (addEvidence), the leading hypotheses to inject (setLeading)

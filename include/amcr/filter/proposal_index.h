@@ -1,4 +1,5 @@
-// A proposal index over the prototype tables (issue 14; the data-driven
+// A proposal index over the prototype tables (so that seeding does not fade
+// as the memory grows, spec "Beyond the paper"; the data-driven
 // proposals of Mixture-MCL, Thrun, Fox, Burgard & Dellaert 2001): for points
 // of every prototype at a stride and every heading bin, the 8 feature rays
 // the table holds there, described up to scale; a V-particle's own 8 rays,

@@ -1,4 +1,4 @@
-// The layout of a prototype directory (issue 17): which image files it
+// The layout of a prototype directory: which image files it
 // holds and the label and instance of each. Two kinds of entry, side by side:
 //   <dir>/star.png           a loose file: label "star", instance "star.png"
 //   <dir>/bird/bird-3.png    a label directory: label "bird", instance

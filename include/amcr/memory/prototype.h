@@ -46,8 +46,9 @@ public:
   /// lookups); s holds one scan per s x s block of pixels, taken at the
   /// block's centre, which every pixel of the block reads (s^2 times less
   /// memory and build time, the ray's origin off by up to (s - 1) / sqrt(2)
-  /// px; issue 17). `instance` names this image among the label's instances
-  /// (the file it came from); "" = the label.
+  /// px: the tables of a large memory fit in RAM). `instance` names this
+  /// image among the label's instances (the file it came from); "" = the
+  /// label.
   Prototype(const std::string& label, const cv::Mat& image, int size, double edge_threshold, double blur_sigma = 1.0,
             int table_stride = 1, const std::string& instance = std::string());
 

@@ -1,4 +1,4 @@
-// An on-disk cache of the prototype tables (issue 16): building the radial
+// An on-disk cache of the prototype tables: building the radial
 // scan table of one prototype takes tens of ms, reading it back a fraction
 // of that. One file per image, named by its label and the hash of the image
 // file's bytes; its header holds a key of everything the table depends on,
@@ -27,7 +27,7 @@ namespace amcr
 {
 /// Changes whenever the table code or the payload layout changes, so that
 /// files of an older build are rebuilt, not read.
-constexpr std::uint32_t kTableFormatVersion = 2;  // 2: the table stride (issue 17)
+constexpr std::uint32_t kTableFormatVersion = 2;  // 2: the table stride (compact tables for large memories)
 
 /// The directory Params::table_cache_dir names, "~/" expanded: "" (the
 /// default) is $ROS_HOME/amcr/tables, or $HOME/.ros/amcr/tables when

@@ -20,8 +20,8 @@ namespace
 constexpr int kFreePlaceDraws = 32;  // uniform draws before a free place is picked from the mask's free pixels
 }  // namespace
 
-// Inhibition of return (issue 15): what a held object shows is explained,
-// so no V-particle starts there.
+// Inhibition of return (spec "Attention that moves on"): what a held object
+// shows is explained, so no V-particle starts there.
 cv::Point2f ParticleFilter::drawFreePlace(Rng& rng) const
 {
   const auto draw = [this, &rng] {
@@ -83,8 +83,9 @@ int ParticleFilter::heldObjectAt(float x, float y) const
   return static_cast<int>(held_mask_.at<std::uint16_t>(row, col)) - 1;
 }
 
-// The scene's context (issue 15): what is held is likely to be in view
-// again, as a copy, so the prior of new M-particles leans towards it.
+// The scene's context (the paper's context priors, spec "Context priors"):
+// what is held is likely to be in view again, as a copy, so the prior of new
+// M-particles leans towards it.
 int ParticleFilter::scenePrototype(int slot, Rng& rng) const
 {
   if (held_prototypes_.empty() || params_.scene_prior_share <= 0.0 || rng.uniform() >= params_.scene_prior_share)

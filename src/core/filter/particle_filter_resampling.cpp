@@ -225,7 +225,8 @@ std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
   const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
   std::vector<double> log_weights = attentionWeights(object_v_particles);
   // A held object keeps a few V-particles; the rest, and the draws, go
-  // where nothing is explained yet (issue 15).
+  // where nothing is explained yet (inhibition of return, spec "Attention
+  // that moves on").
   const std::vector<int> kept = keepOnHeldObjects(log_weights);
   const int n_free = n - static_cast<int>(kept.size());
   const bool any_weight = std::any_of(log_weights.begin(), log_weights.end(), [](double w) { return std::isfinite(w); });

@@ -67,7 +67,8 @@ PrototypePrior::PrototypePrior(const PrototypeMemory& memory, const Params& para
   probability_.assign(weight.size(), 0.0);
   for (int p : active_)
     probability_[p] = weight[p] / total;
-  // Issue 14: a budget that does not grow with the memory; the paper's count per prototype as a mode.
+  // A budget that does not grow with the memory: the paper's count per prototype (kept as a mode,
+  // m_particles_per_v 0) costs a memory of P prototypes P times as much (spec "Why recall fades").
   const int slots = params.m_particles_per_v > 0 ? params.m_particles_per_v
                                                  : params.m_particles_per_prototype * static_cast<int>(active_.size());
   const std::vector<int> share = shareSlots(slots, active_, weight, total);
