@@ -17,11 +17,11 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "amcr/proposal_index.h"
-#include "amcr/prototype.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/filter/proposal_index.h"
+#include "amcr/memory/prototype.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
-#include "amcr/table_cache.h"
+#include "amcr/memory/table_cache.h"
 #include "bench_scenes.h"
 #include "scene_drawing.h"
 

@@ -7,7 +7,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "amcr/prototype_memory.h"
+#include "amcr/memory/prototype_memory.h"
 
 namespace amcr_bench
 {

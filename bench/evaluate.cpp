@@ -50,8 +50,8 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr_method.h"
 #include "recall_funnel.h"
 #include "sequence_truth.h"

@@ -17,12 +17,12 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "amcr/edge_thresholds.h"
-#include "amcr/errors.h"
-#include "amcr/params.h"
-#include "amcr/profile_index.h"
-#include "amcr/proposal_index.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/scan/edge_thresholds.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
+#include "amcr/filter/profile_index.h"
+#include "amcr/filter/proposal_index.h"
+#include "amcr/memory/prototype_memory.h"
 #include "sequence_truth.h"
 
 namespace

@@ -6,9 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "amcr/object_extraction.h"
-#include "amcr/object_extractor.h"
-#include "amcr/proposal_index.h"
+#include "amcr/extraction/object_extraction.h"
+#include "amcr/extraction/object_extractor.h"
+#include "amcr/filter/proposal_index.h"
 
 namespace amcr_bench
 {

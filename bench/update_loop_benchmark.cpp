@@ -14,11 +14,11 @@
 
 #include <benchmark/benchmark.h>
 
-#include "amcr/heading_proposal.h"
-#include "amcr/observation_model.h"
-#include "amcr/particles.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/relational_update.h"
+#include "amcr/filter/heading_proposal.h"
+#include "amcr/filter/observation_model.h"
+#include "amcr/filter/particles.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/filter/relational_update.h"
 #include "bench_scenes.h"
 #include "scene_drawing.h"
 

@@ -14,8 +14,8 @@
 #include <boost/make_shared.hpp>
 #include <sensor_msgs/Image.h>
 
-#include "amcr/errors.h"
-#include "amcr/radial_scan.h"
+#include "amcr/base/errors.h"
+#include "amcr/scan/radial_scan.h"
 #include "fuzz_input.h"
 #include "image_input.h"
 

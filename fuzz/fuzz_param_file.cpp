@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "amcr/errors.h"
-#include "amcr/params.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
 #include "fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)

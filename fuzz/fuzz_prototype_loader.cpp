@@ -8,9 +8,9 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_memory.h"
 #include "fuzz_input.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***)

@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/proposal_index.h"
+#include "amcr/filter/proposal_index.h"
 
 namespace amcr_test
 {

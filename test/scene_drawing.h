@@ -12,10 +12,10 @@
 
 #include <opencv2/core.hpp>
 
-#include "amcr/affine.h"
-#include "amcr/params.h"
-#include "amcr/particles.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/base/affine.h"
+#include "amcr/base/params.h"
+#include "amcr/filter/particles.h"
+#include "amcr/memory/prototype_memory.h"
 
 namespace amcr_test
 {

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/affine.h"
+#include "amcr/base/affine.h"
 
 namespace
 {

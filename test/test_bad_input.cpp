@@ -12,9 +12,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "scene_drawing.h"
 #include "warning_lines.h"

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "amcr/params.h"
+#include "amcr/base/params.h"
 
 namespace
 {

@@ -15,11 +15,11 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/corrected_scan.h"
-#include "amcr/heading_proposal.h"
-#include "amcr/observation_model.h"
-#include "amcr/particles.h"
-#include "amcr/radial_scan.h"
+#include "amcr/filter/corrected_scan.h"
+#include "amcr/filter/heading_proposal.h"
+#include "amcr/filter/observation_model.h"
+#include "amcr/filter/particles.h"
+#include "amcr/scan/radial_scan.h"
 #include "scene_drawing.h"
 
 namespace

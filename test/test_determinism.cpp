@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/prototype_memory.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "scene_drawing.h"
 

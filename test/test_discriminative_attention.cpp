@@ -7,13 +7,13 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/discriminative_attention.h"
-#include "amcr/discriminative_places.h"
-#include "amcr/observation_model.h"
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/random.h"
-#include "amcr/ray_directions.h"
+#include "amcr/filter/discriminative_attention.h"
+#include "amcr/filter/discriminative_places.h"
+#include "amcr/filter/observation_model.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/base/random.h"
+#include "amcr/scan/ray_directions.h"
 #include "scene_drawing.h"
 
 namespace

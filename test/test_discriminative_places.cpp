@@ -9,15 +9,15 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/discriminative_places.h"
-#include "amcr/discriminative_places_cache.h"
-#include "amcr/errors.h"
-#include "amcr/observation_model.h"
-#include "amcr/params.h"
-#include "amcr/prototype_alignment.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/random.h"
-#include "amcr/table_cache.h"
+#include "amcr/filter/discriminative_places.h"
+#include "amcr/filter/discriminative_places_cache.h"
+#include "amcr/base/errors.h"
+#include "amcr/filter/observation_model.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_alignment.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/base/random.h"
+#include "amcr/memory/table_cache.h"
 #include "scene_drawing.h"
 
 namespace

@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/object_extraction.h"
-#include "amcr/random.h"
+#include "amcr/extraction/object_extraction.h"
+#include "amcr/base/random.h"
 
 namespace
 {

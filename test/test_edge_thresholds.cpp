@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/edge_thresholds.h"
-#include "amcr/errors.h"
-#include "amcr/radial_scan.h"
+#include "amcr/scan/edge_thresholds.h"
+#include "amcr/base/errors.h"
+#include "amcr/scan/radial_scan.h"
 
 namespace
 {

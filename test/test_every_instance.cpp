@@ -17,11 +17,11 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/particle_filter.h"
-#include "amcr/radial_scan.h"
+#include "amcr/base/errors.h"
+#include "amcr/filter/particle_filter.h"
+#include "amcr/scan/radial_scan.h"
 #include "amcr/recognizer.h"
-#include "amcr/track_registry.h"
+#include "amcr/extraction/track_registry.h"
 #include "scene_drawing.h"
 
 namespace

@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/errors.h"
-#include "amcr/image_file.h"
-#include "amcr/params.h"
+#include "amcr/base/errors.h"
+#include "amcr/io/image_file.h"
+#include "amcr/base/params.h"
 #include "scene_drawing.h"
 
 namespace

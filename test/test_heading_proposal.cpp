@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/heading_proposal.h"
-#include "amcr/prototype.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/filter/heading_proposal.h"
+#include "amcr/memory/prototype.h"
+#include "amcr/memory/prototype_memory.h"
 #include "scene_drawing.h"
 
 namespace

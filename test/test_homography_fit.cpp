@@ -1,4 +1,4 @@
-// The homography fit on the image (issue 13, part 2; include/amcr/homography_fit.h,
+// The homography fit on the image (issue 13, part 2; include/amcr/extraction/homography_fit.h,
 // perspective_choice.h): a drawn target (dark square, light disc, four light
 // dots) under known perspective views of a tilted plane (a sweep of tilts,
 // perspective strengths and rotations) over clutter, the fit started, as the
@@ -17,9 +17,9 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/homography_fit.h"
-#include "amcr/outline_fit.h"
-#include "amcr/perspective_choice.h"
+#include "amcr/extraction/homography_fit.h"
+#include "amcr/extraction/outline_fit.h"
+#include "amcr/extraction/perspective_choice.h"
 #include "scene_drawing.h"
 
 namespace
@@ -51,7 +51,7 @@ std::vector<cv::Point2d> discPolygon(const Disc& d)
 
 constexpr double kCornerTolerance = 1.5;   // px, largest corner error of the fitted homography
 constexpr double kAffineCannotExplain = 3.0;  // px: a best affine this far off at a corner needs the homography
-constexpr double kVerifyTolerance = 2.0;   // px, the object's score tolerance (object_extractor.cpp)
+constexpr double kVerifyTolerance = 2.0;   // px, the object's score tolerance (candidate_fit.cpp)
 
 /// A view of the prototype as a planar target: the prototype image's centre
 /// at distance `distance` (in focal lengths' units: focal = 1) on the optical

@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/image_file.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/base/errors.h"
+#include "amcr/io/image_file.h"
+#include "amcr/memory/prototype_memory.h"
 #include "scene_drawing.h"
 
 namespace

@@ -12,10 +12,10 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/index_cache.h"
-#include "amcr/proposal_index.h"
+#include "amcr/filter/index_cache.h"
+#include "amcr/filter/proposal_index.h"
 #include "amcr/recognizer.h"
-#include "amcr/table_cache.h"
+#include "amcr/memory/table_cache.h"
 #include "candidate_lists.h"
 #include "scene_drawing.h"
 #include "warning_lines.h"

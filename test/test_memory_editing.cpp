@@ -15,9 +15,9 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/errors.h"
+#include "amcr/base/errors.h"
 #include "amcr/recognizer.h"
-#include "amcr/region_shape.h"
+#include "amcr/memory/region_shape.h"
 #include "scene_drawing.h"
 
 namespace

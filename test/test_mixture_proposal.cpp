@@ -16,8 +16,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/particle_filter.h"
-#include "amcr/radial_scan.h"
+#include "amcr/filter/particle_filter.h"
+#include "amcr/scan/radial_scan.h"
 #include "scene_drawing.h"
 
 namespace

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/motion_model.h"
-#include "amcr/particles.h"
-#include "amcr/random.h"
-#include "amcr/ray_directions.h"
+#include "amcr/filter/motion_model.h"
+#include "amcr/filter/particles.h"
+#include "amcr/base/random.h"
+#include "amcr/scan/ray_directions.h"
 
 namespace
 {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/track_registry.h"
+#include "amcr/extraction/track_registry.h"
 #include "scene_drawing.h"
 
 namespace

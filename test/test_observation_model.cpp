@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/observation_model.h"
-#include "amcr/params.h"
-#include "amcr/prototype.h"
-#include "amcr/relational_update.h"
+#include "amcr/filter/observation_model.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype.h"
+#include "amcr/filter/relational_update.h"
 #include "scene_drawing.h"
 
 namespace

@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/optical_flow.h"
-#include "amcr/track_registry.h"
+#include "amcr/base/errors.h"
+#include "amcr/extraction/optical_flow.h"
+#include "amcr/extraction/track_registry.h"
 #include "scene_drawing.h"
 
 namespace

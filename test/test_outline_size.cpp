@@ -1,4 +1,4 @@
-// outlineSize (include/amcr/outline_fit.h): the size min_object_size is held
+// outlineSize (include/amcr/extraction/outline_fit.h): the size min_object_size is held
 // against, the longer side of the smallest rotated rectangle around an
 // outline, whatever the outline's rotation.
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/outline_fit.h"
+#include "amcr/extraction/outline_fit.h"
 
 namespace
 {

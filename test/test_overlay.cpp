@@ -9,10 +9,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/errors.h"
+#include "amcr/base/errors.h"
 #include "amcr/overlay.h"
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
 
 namespace

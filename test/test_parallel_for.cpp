@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/parallel_for.h"
+#include "amcr/base/parallel_for.h"
 
 namespace
 {

@@ -10,8 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/errors.h"
-#include "amcr/params.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
 #include "scene_drawing.h"
 
 namespace

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/errors.h"
+#include "amcr/base/errors.h"
 #include "amcr/recognizer.h"
 #include "scene_drawing.h"
 

@@ -12,10 +12,10 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/errors.h"
-#include "amcr/profile_index.h"
-#include "amcr/proposal_index.h"
-#include "amcr/radial_scan.h"
+#include "amcr/base/errors.h"
+#include "amcr/filter/profile_index.h"
+#include "amcr/filter/proposal_index.h"
+#include "amcr/scan/radial_scan.h"
 #include "candidate_lists.h"
 #include "scene_drawing.h"
 

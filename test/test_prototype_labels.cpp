@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/prototype_prior.h"
-#include "amcr/track_registry.h"
+#include "amcr/base/errors.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/memory/prototype_prior.h"
+#include "amcr/extraction/track_registry.h"
 #include "scene_drawing.h"
 #include "warning_lines.h"
 

@@ -13,13 +13,13 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/affine.h"
-#include "amcr/errors.h"
-#include "amcr/params.h"
-#include "amcr/prototype.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/radial_scan.h"
-#include "amcr/ray_directions.h"
+#include "amcr/base/affine.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/scan/radial_scan.h"
+#include "amcr/scan/ray_directions.h"
 #include "scene_drawing.h"
 
 namespace

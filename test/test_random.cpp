@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/random.h"
+#include "amcr/base/random.h"
 
 namespace
 {

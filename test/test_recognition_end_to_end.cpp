@@ -16,8 +16,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/outline_fit.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/extraction/outline_fit.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "scene_drawing.h"
 

@@ -15,8 +15,8 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/object_extractor.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/extraction/object_extractor.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "scene_drawing.h"
 

@@ -13,9 +13,9 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/params.h"
-#include "amcr/prototype.h"
-#include "amcr/region_shape.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype.h"
+#include "amcr/memory/region_shape.h"
 #include "scene_drawing.h"
 
 namespace

@@ -18,11 +18,11 @@
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/observation_model.h"
-#include "amcr/particles.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/relational_update.h"
+#include "amcr/base/errors.h"
+#include "amcr/filter/observation_model.h"
+#include "amcr/filter/particles.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/filter/relational_update.h"
 #include "scene_drawing.h"
 
 namespace

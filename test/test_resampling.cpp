@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/random.h"
-#include "amcr/resampling.h"
+#include "amcr/base/random.h"
+#include "amcr/filter/resampling.h"
 
 namespace
 {

@@ -9,11 +9,12 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/errors.h"
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
-#include "amcr/resource_bounds.h"
+#include "amcr/base/resource_bounds.h"
+#include "amcr/memory/table_stride_choice.h"
 #include "scene_drawing.h"
 
 namespace

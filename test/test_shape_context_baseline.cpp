@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/affine.h"
+#include "amcr/base/affine.h"
 #include "baselines/shape_context.h"
 #include "scene_drawing.h"
 

@@ -17,12 +17,12 @@
 #include <opencv2/imgcodecs.hpp>
 #include <unistd.h>
 
-#include "amcr/content_hash.h"
-#include "amcr/errors.h"
-#include "amcr/params.h"
-#include "amcr/proposal_index.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/table_cache.h"
+#include "amcr/base/content_hash.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
+#include "amcr/filter/proposal_index.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/memory/table_cache.h"
 #include "candidate_lists.h"
 #include "scene_drawing.h"
 #include "warning_lines.h"

@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/resource_bounds.h"
-#include "amcr/table_stride_choice.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/base/resource_bounds.h"
+#include "amcr/memory/table_stride_choice.h"
 #include "scene_drawing.h"
 #include "warning_lines.h"
 

@@ -15,8 +15,8 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/exploration_policy.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/filter/exploration_policy.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "scene_drawing.h"
 

@@ -19,14 +19,14 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/affine.h"
-#include "amcr/corrected_scan.h"
-#include "amcr/errors.h"
-#include "amcr/heading_proposal.h"
-#include "amcr/observation_model.h"
-#include "amcr/particles.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/relational_update.h"
+#include "amcr/base/affine.h"
+#include "amcr/filter/corrected_scan.h"
+#include "amcr/base/errors.h"
+#include "amcr/filter/heading_proposal.h"
+#include "amcr/filter/observation_model.h"
+#include "amcr/filter/particles.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/filter/relational_update.h"
 #include "scene_drawing.h"
 
 namespace

@@ -1,5 +1,5 @@
 // The score's tolerance relative to the object's size (verifyTolerance,
-// include/amcr/outline_fit.h): its arithmetic, and what it is for. A drawn
+// include/amcr/extraction/outline_fit.h): its arithmetic, and what it is for. A drawn
 // oval prototype is shown twice at 96 px long: once exactly, once as a
 // look-alike whose outline waves 1.8 px about the oval's. With the fixed 2 px
 // tolerance both score above the decision threshold; with the tolerance
@@ -13,10 +13,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/outline_fit.h"
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/radial_scan.h"
+#include "amcr/extraction/outline_fit.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_memory.h"
+#include "amcr/scan/radial_scan.h"
 #include "scene_drawing.h"
 
 namespace

@@ -1,12 +1,12 @@
 // Anisotropy and viewing angle of a prototype -> image affine (issue 13,
-// part 4; include/amcr/viewing_angle.h).
+// part 4; include/amcr/extraction/viewing_angle.h).
 #include <cmath>
 #include <limits>
 
 #include <gtest/gtest.h>
 
-#include "amcr/errors.h"
-#include "amcr/viewing_angle.h"
+#include "amcr/base/errors.h"
+#include "amcr/extraction/viewing_angle.h"
 #include "scene_drawing.h"
 
 namespace

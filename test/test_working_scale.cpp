@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/errors.h"
-#include "amcr/homography.h"
-#include "amcr/params.h"
-#include "amcr/viewing_angle.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/homography.h"
+#include "amcr/base/params.h"
+#include "amcr/extraction/viewing_angle.h"
 #include "amcr/working_scale.h"
 
 namespace

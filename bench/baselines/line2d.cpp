@@ -8,7 +8,7 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/affine.h"
+#include "amcr/base/affine.h"
 
 namespace amcr_bench
 {

@@ -6,7 +6,7 @@
 #include <opencv2/flann.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/affine.h"
+#include "amcr/base/affine.h"
 
 namespace amcr_bench
 {

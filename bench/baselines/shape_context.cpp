@@ -8,7 +8,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/affine.h"
+#include "amcr/base/affine.h"
 #include "candidate_contours.h"
 
 namespace amcr_bench

@@ -13,9 +13,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "amcr/filter_view.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/recognition_result.h"
+#include "amcr/extraction/recognition_result.h"
+#include "amcr/filter/filter_view.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
 
 namespace amcr

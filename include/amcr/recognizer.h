@@ -13,16 +13,16 @@
 
 #include <opencv2/core.hpp>
 
-#include "amcr/exploration_policy.h"
-#include "amcr/filter_memory.h"
-#include "amcr/filter_view.h"
-#include "amcr/flow_tracker.h"
+#include "amcr/base/params.h"
+#include "amcr/extraction/flow_tracker.h"
+#include "amcr/extraction/recognition_result.h"
+#include "amcr/filter/exploration_policy.h"
+#include "amcr/filter/filter_memory.h"
+#include "amcr/filter/filter_view.h"
+#include "amcr/filter/particle_filter.h"
+#include "amcr/filter/particles.h"
 #include "amcr/frame_budget.h"
-#include "amcr/params.h"
-#include "amcr/particle_filter.h"
-#include "amcr/particles.h"
-#include "amcr/prototype_memory.h"
-#include "amcr/recognition_result.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/working_scale.h"
 
 namespace amcr

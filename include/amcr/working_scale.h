@@ -1,4 +1,4 @@
-// Resolution independence (issue 14, item 5): the filter works on the input
+// Resolution independence: the filter works on the input
 // reduced to params.working_resolution (its longer side), so that the rays,
 // steps and seeding, which are in px, see objects of the same size whatever
 // the camera's resolution. Everything a user gets back is mapped to input px.
@@ -6,8 +6,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "amcr/affine.h"
-#include "amcr/recognition_result.h"
+#include "amcr/base/affine.h"
+#include "amcr/extraction/recognition_result.h"
 
 namespace amcr
 {

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <utility>
 
-#include "amcr/errors.h"
+#include "amcr/base/errors.h"
 
 namespace amcr
 {

@@ -10,8 +10,8 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/radial_scan.h"
+#include "amcr/base/errors.h"
+#include "amcr/scan/radial_scan.h"
 
 namespace amcr
 {

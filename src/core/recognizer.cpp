@@ -3,11 +3,11 @@
 
 #include <algorithm>
 
-#include "amcr/discriminative_attention.h"
-#include "amcr/object_extractor.h"
-#include "amcr/parallel_for.h"
-#include "amcr/radial_scan.h"
-#include "amcr/resource_bounds.h"
+#include "amcr/base/parallel_for.h"
+#include "amcr/base/resource_bounds.h"
+#include "amcr/extraction/object_extractor.h"
+#include "amcr/filter/discriminative_attention.h"
+#include "amcr/scan/radial_scan.h"
 #include "amcr/working_scale.h"
 
 namespace amcr
@@ -97,7 +97,7 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   const cv::Mat input_grey = toGray8(image);  // throws InputError before any state changes
   // The filter works on the working image (px parameters are its px) and
   // reports in input px: the same scene at any resolution meets the rays,
-  // steps and seeding at the same size (issue 14, item 5).
+  // steps and seeding at the same size.
   const cv::Size previous_input = scale_.input;
   scale_ = chooseWorkingScale(input_grey.size(), params_.working_resolution);
   const cv::Mat grey = toWorkingImage(input_grey, scale_);

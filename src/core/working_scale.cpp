@@ -5,8 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/homography.h"
-#include "amcr/viewing_angle.h"
+#include "amcr/base/homography.h"
+#include "amcr/extraction/viewing_angle.h"
 
 namespace amcr
 {

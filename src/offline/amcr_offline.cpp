@@ -1,6 +1,7 @@
-// amcr_offline: Radial-AMCR on recorded data (issue 2, item 4). One JSON line
-// per input frame; optionally an overlay video. See usageText() for the
-// command line, the output and the exit codes.
+// amcr_offline: Radial-AMCR on recorded data, without ROS (for benchmarks,
+// tests and recordings at hand). One JSON line per input frame; optionally
+// an overlay video. See usageText() for the command line, the output and
+// the exit codes.
 //
 // Only this file decides exit codes: the library and the helpers throw.
 #include <cstdlib>
@@ -17,10 +18,10 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "amcr/errors.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/overlay.h"
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "frame_source.h"
 #include "json_output.h"

@@ -14,8 +14,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/image_file.h"
+#include "amcr/base/errors.h"
+#include "amcr/io/image_file.h"
 
 namespace amcr
 {

@@ -13,7 +13,7 @@
 #include <ostream>
 #include <string>
 
-#include "amcr/recognition_result.h"
+#include "amcr/extraction/recognition_result.h"
 
 namespace amcr
 {

@@ -7,8 +7,8 @@
 
 #include <std_msgs/Header.h>
 
-#include "amcr/prototype_memory.h"
-#include "amcr/recognition_result.h"
+#include "amcr/extraction/recognition_result.h"
+#include "amcr/memory/prototype_memory.h"
 #include <amcr/PrototypeTable.h>
 #include <amcr/Recognition.h>
 #include <amcr/Recognitions.h>

@@ -26,8 +26,8 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <tf2_ros/transform_broadcaster.h>
 
-#include "amcr/prototype_memory.h"
-#include "amcr/recognition_result.h"
+#include "amcr/extraction/recognition_result.h"
+#include "amcr/memory/prototype_memory.h"
 #include "planar_pose.h"
 #include "report_throttle.h"
 #include <amcr/Recognitions.h>

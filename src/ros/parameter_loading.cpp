@@ -6,7 +6,7 @@
 #include <map>
 #include <system_error>
 
-#include "amcr/errors.h"
+#include "amcr/base/errors.h"
 
 namespace amcr_ros
 {

@@ -10,7 +10,7 @@
 
 #include <ros/node_handle.h>
 
-#include "amcr/params.h"
+#include "amcr/base/params.h"
 
 namespace amcr_ros
 {

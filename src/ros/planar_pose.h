@@ -1,4 +1,5 @@
-// The pose of a recognized planar prototype in the camera frame (issue 3, item 3; issue 18).
+// The pose of a recognized planar prototype in the camera frame: what a robot
+// needs to act on the object (each Recognition's pose and the object's tf frame).
 // The prototype lies on z = 0 of its own frame: origin at the centre of the
 // shape's bounding box in the prototype image, x right and y down along the
 // prototype image, z into the target (away from a camera that sees its front);
@@ -22,9 +23,9 @@
 #include <opencv2/core.hpp>
 #include <sensor_msgs/CameraInfo.h>
 
-#include "amcr/affine.h"
-#include "amcr/homography.h"
-#include "amcr/prototype.h"
+#include "amcr/base/affine.h"
+#include "amcr/base/homography.h"
+#include "amcr/memory/prototype.h"
 
 namespace amcr_ros
 {

@@ -10,8 +10,8 @@
 #include <malloc.h>
 #endif
 
-#include "amcr/errors.h"
-#include "amcr/parallel_for.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/parallel_for.h"
 #include "recognizer_ros.h"
 #include "reconfigure.h"
 

@@ -13,8 +13,8 @@
 #include <boost/make_shared.hpp>
 #include <cv_bridge/cv_bridge.h>
 
+#include "amcr/base/parallel_for.h"
 #include "amcr/overlay.h"
-#include "amcr/parallel_for.h"
 #include "image_input.h"
 #include "message_conversion.h"
 #include "parameter_loading.h"

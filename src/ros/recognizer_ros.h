@@ -52,9 +52,9 @@
 #include <diagnostic_updater/update_functions.h>
 #include <std_srvs/Trigger.h>
 
-#include "amcr/filter_memory.h"
-#include "amcr/params.h"
-#include "amcr/prototype_memory.h"
+#include "amcr/base/params.h"
+#include "amcr/filter/filter_memory.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "recognizer_stats.h"
 #include "report_throttle.h"

@@ -11,9 +11,9 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "amcr/errors.h"
-#include "amcr/parallel_for.h"
-#include "amcr/region_shape.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/parallel_for.h"
+#include "amcr/memory/region_shape.h"
 #include "recognizer_ros.h"
 
 namespace amcr_ros

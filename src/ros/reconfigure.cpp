@@ -6,7 +6,7 @@
 #include <memory>
 #include <sstream>
 
-#include "amcr/errors.h"
+#include "amcr/base/errors.h"
 
 namespace amcr_ros
 {

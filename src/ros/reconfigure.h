@@ -12,7 +12,7 @@
 
 #include <string>
 
-#include "amcr/params.h"
+#include "amcr/base/params.h"
 #include <amcr/AMCRConfig.h>
 
 namespace amcr_ros

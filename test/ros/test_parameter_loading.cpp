@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
-#include "amcr/errors.h"
+#include "amcr/base/errors.h"
 #include "parameter_loading.h"
 #include "reconfigure.h"
 

@@ -14,8 +14,8 @@
 
 #include <gtest/gtest.h>
 
-#include "amcr/errors.h"
-#include "amcr/params.h"
+#include "amcr/base/errors.h"
+#include "amcr/base/params.h"
 #include "reconfigure.h"
 
 namespace

@@ -1,0 +1,56 @@
+// Result extraction (spec "Output"): from each V-particle's M-particles to
+// clusters, and from agreeing V-particles to objects.
+#pragma once
+
+#include <vector>
+
+#include "amcr/base/affine.h"
+#include "amcr/base/params.h"
+#include "amcr/filter/particles.h"
+
+namespace amcr
+{
+/// The densest M-cluster of one V-particle.
+struct VParticleCluster
+{
+  int v = -1;              ///< index of the V-particle
+  int prototype = -1;      ///< prototype of the cluster
+  cv::Point2f mean;        ///< cluster mean, table px of that prototype
+  float share = 0.f;       ///< share of the V-particle's M-particles in the cluster
+  Affine image_to_table;   ///< mean A of the cluster's M-particles with a valid A
+  bool has_affine = false;
+};
+
+/// Whether a cluster is focused enough to stand for its V-particle's
+/// interpretation: it holds at least `min_share` (params.cluster_min_share)
+/// of the V-particle's M-particles. The one test of "converged" everywhere.
+inline bool isConverged(const VParticleCluster& cluster, double min_share) { return cluster.share >= min_share; }
+
+/// Finds the densest cluster among M-particles [begin, end): a mean shift of
+/// `radius` table px from the most likely particle of each prototype, most
+/// populated prototype first, keeping the mode with the most members (a tight
+/// cluster in one prototype wins over more particles spread over another).
+VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
+                                 double radius);
+
+/// The dominant cluster of every V-particle (index = V index) of `v`, whose
+/// M-particles in `m` are `ranges` (one per V-particle).
+std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, const MParticleSet& m,
+                                               const std::vector<MRange>& ranges, int prototype_count, double radius);
+
+/// V-particles that agree on one object: the same prototype and affines that
+/// map each other's correspondences within `group_tolerance` input px.
+struct ObjectHypothesis
+{
+  int prototype = -1;
+  std::vector<int> members;  ///< indices into the cluster list
+  Affine table_to_image;     ///< fitted to the members' correspondences
+};
+
+/// Groups converged clusters (share >= cluster_min_share), largest share
+/// first; every group of at least `min_members` members becomes a hypothesis
+/// with an affine fitted robustly to all its correspondences.
+std::vector<ObjectHypothesis> groupClusters(const std::vector<VParticle>& v,
+                                            const std::vector<VParticleCluster>& clusters, const Params& params,
+                                            int min_members);
+}  // namespace amcr

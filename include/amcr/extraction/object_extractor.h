@@ -1,0 +1,61 @@
+// Result extraction (spec "Output"): a function of the particle filter's
+// state (read-only), the scanned image and the tracks of the last frame. It
+// returns the recognized objects and, explicitly, the feedback the filter
+// takes from them: the verification's evidence per V-particle, the leading
+// hypotheses to inject as M-particles, and the V-particles of each reported
+// object (attention sharing at V-resampling).
+#pragma once
+
+#include <vector>
+
+#include "amcr/extraction/object_extraction.h"
+#include "amcr/extraction/recognition_result.h"
+#include "amcr/extraction/track_registry.h"
+#include "amcr/filter/particle_filter.h"
+#include "amcr/scan/radial_scan.h"
+
+namespace amcr
+{
+/// What the filter takes from one extraction. The V indices refer to the
+/// filter's V-particles at extraction time: they are to be used before the
+/// next V-resampling (which replaces the V-particles) and not kept.
+struct ExtractionFeedback
+{
+  /// Verification of converged V-particles' interpretations, in V order:
+  /// before V-resampling, the filter adds them to the V-particles' evidence.
+  std::vector<EvidenceBonus> evidence;
+  /// The best verified hypotheses, reported or not: the M-resamplings of the
+  /// next iteration inject their poses.
+  std::vector<LeadingHypothesis> leading;
+  /// For each reported object (same order as Extraction::objects), the V
+  /// indices of the V-particles that support it.
+  std::vector<std::vector<int>> object_v_particles;
+};
+
+struct Extraction
+{
+  /// Each V-particle's dominant cluster (index = V index).
+  std::vector<VParticleCluster> clusters;
+  /// The objects at or above the decision threshold, best score first
+  /// (track ids not assigned yet).
+  std::vector<RecognizedObject> objects;
+  /// Every object the extraction fitted and verified on the image, reported
+  /// or not, best score first: what a diagnosis of a miss reads (the
+  /// benchmark's recall funnel), never fed back.
+  std::vector<RecognizedObject> verified;
+  ExtractionFeedback feedback;
+};
+
+/// The dominant cluster of each of the filter's V-particles (index = V index),
+/// as the extraction defines it.
+std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter);
+
+/// Clusters, groups of agreeing V-particles, each group's and each track's
+/// affine refined on the image's edges and verified against it, and the
+/// report with its hysteresis for tracked objects (spec "Output", "Tracking").
+Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks);
+/// The same with the smallest object in px of the scanned image (the
+/// recognizer's working image) in place of params.min_object_size.
+Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks,
+                          double min_object_size);
+}  // namespace amcr

@@ -1,0 +1,138 @@
+// The candidates of the result extraction: each start's affines refined on
+// the image's edges, described as an object (outline, score, support,
+// correspondences) and verified; the best few fitted by a homography where
+// the outline demands it (perspective_choice.h).
+#include <algorithm>
+#include <cmath>
+
+#include "amcr/base/homography.h"
+#include "amcr/base/parallel_for.h"
+#include "amcr/extraction/outline_fit.h"
+#include "amcr/extraction/perspective_choice.h"
+#include "amcr/extraction/viewing_angle.h"
+#include "extraction_steps.h"
+
+namespace amcr
+{
+namespace extraction_steps
+{
+namespace
+{
+constexpr std::size_t kMaxPerspectiveFits = 3;  // best candidates per frame that may get a homography
+
+/// A candidate for a prototype at a table -> image affine (score, support,
+/// correspondences, outline); false when the affine is out of bounds or the
+/// object too small. With a `perspective` whose homography is used, the
+/// outline, the score and the correspondences follow the homography.
+bool describeObject(const ExtractionInput& in, int prototype, const Affine& table_to_image, Candidate& candidate,
+                    const PerspectiveFit* perspective = nullptr)
+{
+  const Prototype& p = in.memory[prototype];
+  double smallest = 0, largest = 0;
+  affineScales(table_to_image, smallest, largest);
+  Affine image_to_table;
+  if (largest > in.params.max_affine_scale || smallest < 1.0 / in.params.max_affine_scale ||
+      !invertAffine(table_to_image, image_to_table))
+    return false;
+  const bool use_homography = perspective != nullptr && perspective->used;
+  const auto toImage = [&](const cv::Point2d& q) {
+    return use_homography ? applyHomography(perspective->table_to_image, q) : applyAffine(table_to_image, q);
+  };
+  candidate = Candidate();
+  candidate.table_to_image = table_to_image;
+  RecognizedObject& object = candidate.object;
+  object.label = p.label();
+  object.instance = p.instance();
+  object.prototype_id = prototype;
+  for (const auto& o : p.outline())
+    object.outline.push_back(toImage(cv::Point2d(o.position)));
+  // Too small to tell shapes apart: neither reported nor fed back to attention.
+  const double size = outlineSize(object.outline);
+  if (size < in.params.min_object_size)
+    return false;
+  candidate.score_tolerance = verifyTolerance(size, in.params.verify_tolerance, in.params.verify_relative_tolerance);
+  object.score = use_homography ? perspective->support
+                                : outlineSupport(p, in.scanner, table_to_image, candidate.score_tolerance);
+  object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
+  object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
+  object.homography_valid = use_homography;
+  object.homography = use_homography ? composeHomography(liftAffine(p.originalToTable()), perspective->table_to_image)
+                                     : liftAffine(object.prototype_to_image);
+  object.anisotropy = affineAnisotropy(object.prototype_to_image);
+  object.viewing_angle_deg = viewingAngleDegrees(object.anisotropy);
+  // Support: the converged V-particles whose cluster this transform explains.
+  const std::vector<VParticle>& v = in.filter.vParticles();
+  for (const VParticleCluster& c : in.clusters)
+  {
+    if (c.prototype != prototype || !isConverged(c, in.params.cluster_min_share))
+      continue;
+    const cv::Point2d image_point(v[c.v].x, v[c.v].y);
+    const cv::Point2d predicted = toImage(cv::Point2d(c.mean));
+    if (!(std::hypot(predicted.x - image_point.x, predicted.y - image_point.y) <= in.params.group_tolerance))
+      continue;
+    object.correspondences.push_back({image_point, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean))});
+    candidate.v_particles.push_back(c.v);
+  }
+  object.support = static_cast<int>(object.correspondences.size());
+  return true;
+}
+
+/// The fit of the candidate's outline by a homography, when the outline
+/// demands it (perspective_choice.h); the candidate is left as it is otherwise.
+void fitPerspective(const ExtractionInput& in, Candidate& candidate)
+{
+  // Only an object that could be reported (as a tracked one) is worth it.
+  if (!in.params.fit_homography || candidate.object.score < kKeepTrackRatio * in.params.decision_threshold)
+    return;
+  const int prototype = candidate.object.prototype_id;
+  PerspectiveRule rule;
+  rule.tolerance = candidate.score_tolerance;
+  rule.max_scale = in.params.max_affine_scale;
+  const PerspectiveFit fit = choosePerspective(in.memory[prototype], in.scanner, candidate.table_to_image,
+                                               candidate.object.score, in.params.refine_iterations,
+                                               in.params.refine_search, rule);
+  Candidate perspective;
+  if (fit.used && describeObject(in, prototype, candidate.table_to_image, perspective, &fit))
+    candidate = std::move(perspective);
+}
+}  // namespace
+
+/// Each start refined on the image's edges and verified; of a start's
+/// affines the best fit. Best score first (stable). The starts are fitted
+/// in parallel (params.num_threads), each into its own slot, and kept in
+/// their order: the same candidates whatever the thread count.
+std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vector<FitStart>& starts)
+{
+  const int threads = resolveThreads(in.params.num_threads);
+  std::vector<Candidate> fitted(starts.size());
+  std::vector<char> found(starts.size(), 0);
+  parallelFor(static_cast<int>(starts.size()), threads, [&](int s) {
+    const FitStart& start = starts[s];
+    const Prototype& p = in.memory[start.prototype];
+    for (const Affine& affine : start.affines)
+    {
+      Candidate candidate;
+      const Affine refined = refineOnEdges(p, in.scanner, affine, in.params.refine_iterations, in.params.refine_search);
+      if (describeObject(in, start.prototype, refined, candidate) &&
+          (!found[s] || candidate.object.score > fitted[s].object.score))
+      {
+        fitted[s] = std::move(candidate);
+        found[s] = 1;
+      }
+    }
+  });
+  std::vector<Candidate> candidates;
+  for (std::size_t s = 0; s < starts.size(); ++s)
+    if (found[s])
+      candidates.push_back(std::move(fitted[s]));
+  const auto byScore = [](const Candidate& a, const Candidate& b) { return a.object.score > b.object.score; };
+  std::stable_sort(candidates.begin(), candidates.end(), byScore);
+  // The homography, for the best few that could be reported (its fit costs
+  // about as much as the rest of the extraction).
+  parallelFor(static_cast<int>(std::min(candidates.size(), kMaxPerspectiveFits)), threads,
+              [&](int i) { fitPerspective(in, candidates[i]); });
+  std::stable_sort(candidates.begin(), candidates.end(), byScore);
+  return candidates;
+}
+}  // namespace extraction_steps
+}  // namespace amcr

@@ -1,0 +1,178 @@
+// Where the fits of the result extraction start: each group's affine, each
+// tracked object moved by the flow, and the interpretations V-particles are
+// still deciding between, with the look-alikes of each tracked prototype.
+#include <algorithm>
+#include <cmath>
+
+#include "amcr/filter/discriminative_attention.h"
+#include "amcr/filter/discriminative_places.h"
+#include "extraction_steps.h"
+
+namespace amcr
+{
+namespace extraction_steps
+{
+namespace
+{
+constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
+constexpr double kTrackDistance = 40.0;            // px an object's centre may move between frames and keep its track
+
+/// Whether a start of `prototype` begins near `centre` (image px).
+bool startedNear(const ExtractionInput& in, const std::vector<FitStart>& starts, int prototype,
+                 const cv::Point2d& centre)
+{
+  const cv::Point2d table_centre = in.memory[prototype].centre();
+  for (const FitStart& start : starts)
+  {
+    if (start.prototype != prototype)
+      continue;
+    for (const Affine& affine : start.affines)
+    {
+      const cv::Point2d c = applyAffine(affine, table_centre);
+      if (std::hypot(c.x - centre.x, c.y - centre.y) <= kTrackDistance)
+        return true;
+    }
+  }
+  return false;
+}
+
+/// The look-alikes of each tracked object's prototype (discriminative_places.h),
+/// where the pair's alignment puts them on the object (b's table -> a's
+/// table -> image), the least well verified object first.
+std::vector<FitStart> lookAlikeStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
+                                      const std::vector<Affine>& track_affines)
+{
+  std::vector<FitStart> starts;
+  const DiscriminativePlaces* alike = in.filter.lookAlikes();
+  if (!alike)
+    return starts;
+  std::vector<std::size_t> by_score(tracks.size());
+  for (std::size_t k = 0; k < by_score.size(); ++k)
+    by_score[k] = k;
+  std::stable_sort(by_score.begin(), by_score.end(), [&tracks](std::size_t i, std::size_t j) {
+    return tracks[i].object.score < tracks[j].object.score;
+  });
+  for (std::size_t k : by_score)
+    for (const AlikePair* pair : alike->lookAlikesOf(tracks[k].object.prototype_id))
+    {
+      Affine b_to_a;
+      if (invertAffine(pair->a_to_b, b_to_a))
+        starts.push_back({pair->b, {composeAffine(b_to_a, track_affines[k])}});
+    }
+  return starts;
+}
+
+// The other interpretations V-particles are still deciding between
+// (discriminative_attention.h): each gets a fit of its own where no start
+// of its prototype is near, the largest clusters first, so that of alike
+// shapes at one place the image's outline decides (report() keeps the better
+// of overlapping objects, and a better one leads the injection). Then the
+// look-alikes of each tracked object's prototype (discriminative_places.h),
+// where the pair's alignment puts them on the object, the least well
+// verified object first: once a track's V-particles have converged on one
+// of two prototypes the index confuses, no cluster of the other is left to
+// compete, and a wrong one would be held for good.
+void addCompetingStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
+                        const std::vector<Affine>& track_affines, std::vector<FitStart>& starts)
+{
+  if (in.params.competing_fits <= 0)
+    return;
+  struct Alternative
+  {
+    float share;
+    FitStart start;
+  };
+  std::vector<Alternative> alternatives;
+  // A look-alike of the V-particle's most likely interpretation: another
+  // prototype (another place of the same one is no alternative at this place).
+  for (const VParticle& v : in.filter.vParticles())
+    for (int k = 1; k < v.competing.count; ++k)
+    {
+      const CompetingHypothesis& h = v.competing.hypothesis[k];
+      Affine table_to_image;
+      if (h.prototype == v.competing.hypothesis[0].prototype || !hypothesisTableToImage(h, table_to_image))
+        continue;
+      alternatives.push_back({h.share, {h.prototype, {table_to_image}}});
+    }
+  std::stable_sort(alternatives.begin(), alternatives.end(),
+                   [](const Alternative& a, const Alternative& b) { return a.share > b.share; });
+  for (FitStart& start : lookAlikeStarts(in, tracks, track_affines))
+    alternatives.push_back({0.f, std::move(start)});
+  int added = 0;
+  for (Alternative& a : alternatives)
+  {
+    if (added >= in.params.competing_fits)
+      break;
+    const cv::Point2d centre = applyAffine(a.start.affines[0], in.memory[a.start.prototype].centre());
+    if (startedNear(in, starts, a.start.prototype, centre))
+      continue;
+    starts.push_back(std::move(a.start));
+    ++added;
+  }
+}
+}  // namespace
+
+// Starting points of the fit: each group's affine, and each object of the
+// previous frame (recognition and tracking run together: a pose, once
+// fitted, is moved by the flow and refined on, not found again). A group near
+// a previous object of its prototype tries both and keeps the better fit.
+// Groups on held objects, which their tracks already start from, come last
+// in the verification's limit, so that the unexplained ones get it.
+std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& registry)
+{
+  // Every group is verified, even a single V-particle's: one that passes
+  // seeds the others through injection before it has the support to be reported.
+  std::vector<ObjectHypothesis> hypotheses = groupClusters(in.filter.vParticles(), in.clusters, in.params, 1);
+  const std::vector<Track>& tracks = registry.tracks();
+  std::vector<Affine> track_affines;  // each track's table -> image affine, moved by the flow
+  for (const Track& t : tracks)
+    track_affines.push_back(
+        composeAffine(in.memory[t.object.prototype_id].tableToOriginal(), t.object.prototype_to_image));
+  // Each group with the tracks of its prototype whose centre is near its own.
+  struct GroupStart
+  {
+    const ObjectHypothesis* group;
+    std::vector<std::size_t> near;
+    bool on_held = false;
+  };
+  std::vector<GroupStart> groups;
+  for (const ObjectHypothesis& h : hypotheses)
+  {
+    GroupStart g{&h, {}};
+    const cv::Point2d centre = applyAffine(h.table_to_image, in.memory[h.prototype].centre());
+    for (std::size_t k = 0; k < tracks.size(); ++k)
+    {
+      const cv::Point2d track_centre = applyAffine(track_affines[k], in.memory[h.prototype].centre());
+      if (tracks[k].object.prototype_id == h.prototype &&
+          std::hypot(centre.x - track_centre.x, centre.y - track_centre.y) <= kTrackDistance)
+      {
+        g.near.push_back(k);
+        g.on_held = g.on_held || tracks[k].object.state == ObjectState::kHeld;
+      }
+    }
+    groups.push_back(std::move(g));
+  }
+  std::stable_partition(groups.begin(), groups.end(), [](const GroupStart& g) { return !g.on_held; });
+  if (groups.size() > kMaxVerifiedHypotheses)
+    groups.resize(kMaxVerifiedHypotheses);
+
+  std::vector<FitStart> starts;
+  std::vector<bool> track_used(tracks.size(), false);
+  for (const GroupStart& g : groups)
+  {
+    FitStart start{g.group->prototype, {g.group->table_to_image}};
+    for (std::size_t k : g.near)
+    {
+      start.affines.push_back(track_affines[k]);
+      track_used[k] = true;
+    }
+    starts.push_back(std::move(start));
+  }
+  for (std::size_t k = 0; k < tracks.size(); ++k)
+    if (!track_used[k])
+      starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}});
+  addCompetingStarts(in, tracks, track_affines, starts);
+  return starts;
+}
+}  // namespace extraction_steps
+}  // namespace amcr

@@ -1,0 +1,134 @@
+// Result extraction (spec "Output"): from clusters and groups to objects
+// fitted and verified on the image, and the feedback the verification gives
+// to attention (V-resampling) and to the M-particles (injection). The steps
+// before the feedback are in fit_starts.cpp, candidate_fit.cpp and
+// look_alike_support.cpp (extraction_steps.h).
+#include "amcr/extraction/object_extractor.h"
+
+#include <cmath>
+
+#include "amcr/extraction/track_registry.h"
+#include "extraction_steps.h"
+
+namespace amcr
+{
+using namespace extraction_steps;  // the steps and what they share (extraction_steps.h)
+
+namespace
+{
+constexpr int kMaxLeadingHypotheses = 3;           // hypotheses whose poses are injected as M-particles
+constexpr double kVerificationGain = 4.0;          // log-weight per unit of outline score above 0.5 (V-resampling)
+constexpr double kLeadingScoreRatio = 0.5;         // a leading hypothesis scores at least this share of the threshold
+
+// Attention feedback from the verification: a converged V-particle whose
+// interpretation the whole outline confirms gains V-weight, one whose
+// interpretation the image contradicts loses it (the paper's V-weight,
+// "V-particles on clutter die out", made explicit).
+std::vector<EvidenceBonus> verificationEvidence(const ExtractionInput& in, const std::vector<Candidate>& candidates)
+{
+  std::vector<EvidenceBonus> evidence;
+  const std::vector<VParticle>& v = in.filter.vParticles();
+  for (const VParticleCluster& c : in.clusters)
+  {
+    if (!isConverged(c, in.params.cluster_min_share))
+      continue;
+    double best = -1.0;
+    for (const Candidate& candidate : candidates)
+    {
+      const RecognizedObject& object = candidate.object;
+      if (object.prototype_id != c.prototype || object.score <= best)
+        continue;
+      const Prototype& p = in.memory[c.prototype];
+      const cv::Point2d prototype_point = applyAffine(p.tableToOriginal(), cv::Point2d(c.mean));
+      const cv::Point2d predicted = object.homography_valid ? applyHomography(object.homography, prototype_point)
+                                                            : applyAffine(object.prototype_to_image, prototype_point);
+      if (std::hypot(predicted.x - v[c.v].x, predicted.y - v[c.v].y) <= in.params.group_tolerance)
+        best = object.score;
+    }
+    if (best >= 0.0)
+      evidence.push_back({c.v, kVerificationGain * (best - 0.5)});
+  }
+  return evidence;
+}
+
+/// The leading hypotheses seed M-particles at the next iteration, reported or not.
+std::vector<LeadingHypothesis> leadingHypotheses(const ExtractionInput& in, const std::vector<Candidate>& candidates)
+{
+  std::vector<LeadingHypothesis> leading;
+  for (const auto& candidate : candidates)
+  {
+    const RecognizedObject& c = candidate.object;
+    if (static_cast<int>(leading.size()) >= kMaxLeadingHypotheses ||
+        c.score < kLeadingScoreRatio * in.params.decision_threshold)
+      break;
+    const Prototype& p = in.memory[c.prototype_id];
+    leading.push_back({c.prototype_id, composeAffine(c.image_to_prototype, p.originalToTable())});
+  }
+  return leading;
+}
+
+/// Reports what passes the decision threshold; of two overlapping objects
+/// the better one; a new object only while the registry has room (max_objects).
+void report(const Params& params, const TrackRegistry& registry, std::vector<Candidate>& candidates,
+            Extraction& extraction)
+{
+  int new_tracks = 0;
+  for (auto& candidate : candidates)
+  {
+    const RecognizedObject& c = candidate.object;
+    // Hysteresis: an object of the previous frames stays while its score
+    // keeps above a share of the threshold; one V-particle must support it
+    // while it is tentative; once confirmed, the tracker and the edges
+    // follow it alone.
+    const Track* track = registry.continued(c);
+    const double threshold = params.decision_threshold * (track ? kKeepTrackRatio : 1.0);
+    // One that took over a look-alike's V-particles needs one of them: the
+    // look-alike had min_support when it was found, and a held object keeps
+    // only held_v_particles.
+    int support = candidate.adopted ? 1 : params.min_support;
+    if (track)
+      support = track->object.state == ObjectState::kTentative ? 1 : 0;
+    if (c.score < threshold || c.support < support || (!track && !registry.hasRoom(new_tracks)))
+      continue;
+    bool suppressed = false;
+    for (const auto& kept : extraction.objects)
+      suppressed = suppressed || outlineOverlap(c.outline, kept.outline) > kSameObjectOverlap;
+    if (suppressed)
+      continue;
+    new_tracks += track ? 0 : 1;
+    extraction.objects.push_back(std::move(candidate.object));
+    extraction.feedback.object_v_particles.push_back(std::move(candidate.v_particles));
+  }
+}
+}  // namespace
+
+std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter)
+{
+  return dominantClusters(filter.vParticles(), filter.mParticles(), filter.mRanges(),
+                          static_cast<int>(filter.memory().size()), filter.params().cluster_radius);
+}
+
+Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks)
+{
+  return extractObjects(filter, scanner, tracks, filter.params().min_object_size);
+}
+
+Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks,
+                          double min_object_size)
+{
+  Extraction extraction;
+  extraction.clusters = filterClusters(filter);
+  Params params = filter.params();
+  params.min_object_size = min_object_size;
+  const ExtractionInput in{filter, scanner, extraction.clusters, params, filter.memory()};
+  std::vector<Candidate> candidates = fitCandidates(in, fitStarts(in, tracks));
+  if (in.params.competing_fits > 0)
+    adoptSupport(in, candidates);
+  extraction.feedback.evidence = verificationEvidence(in, candidates);
+  extraction.feedback.leading = leadingHypotheses(in, candidates);
+  for (const Candidate& candidate : candidates)
+    extraction.verified.push_back(candidate.object);
+  report(in.params, tracks, candidates, extraction);
+  return extraction;
+}
+}  // namespace amcr

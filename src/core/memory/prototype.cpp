@@ -1,0 +1,192 @@
+#include "amcr/memory/prototype.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+#include "amcr/base/errors.h"
+#include "amcr/base/parallel_for.h"
+#include "amcr/scan/radial_scan.h"
+
+namespace amcr
+{
+namespace
+{
+constexpr float kMaxTableDistance = 127.f;  // the largest distance a uint8 in 0.5 px units holds
+constexpr double kOutlineSpacing = 2.0;     // px between resampled outline points
+
+/// Foreground mask (255 = shape) of a silhouette of either polarity: the
+/// background is whichever value dominates the image border.
+cv::Mat silhouetteMask(const cv::Mat& grey)
+{
+  cv::Mat mask;
+  cv::threshold(grey, mask, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
+  const int w = mask.cols, h = mask.rows;
+  long border_on = 0, border_count = 0;
+  for (int x = 0; x < w; ++x)
+  {
+    border_on += (mask.at<uchar>(0, x) != 0) + (mask.at<uchar>(h - 1, x) != 0);
+    border_count += 2;
+  }
+  for (int y = 0; y < h; ++y)
+  {
+    border_on += (mask.at<uchar>(y, 0) != 0) + (mask.at<uchar>(y, w - 1) != 0);
+    border_count += 2;
+  }
+  if (2 * border_on > border_count)
+    cv::bitwise_not(mask, mask);
+  return mask;
+}
+}  // namespace
+
+Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, double edge_threshold,
+                     double blur_sigma, int table_stride, const std::string& instance)
+  : blur_sigma_(blur_sigma), stride_(table_stride), label_(label), instance_(instance.empty() ? label : instance)
+{
+  if (image.empty())
+    throw MemoryError("prototype '" + label + "': the image is empty");
+  if (size < 8)
+    throw ParameterError("parameter 'prototype_size' = " + std::to_string(size) + " is below 8 px");
+  if (table_stride < 1 || table_stride > kMaxTableStride)
+    throw ParameterError("parameter 'table_stride' = " + std::to_string(table_stride) + " is outside [1, " +
+                         std::to_string(kMaxTableStride) + "]");
+  cv::Mat grey;
+  try
+  {
+    grey = toGray8(image);
+  }
+  catch (const InputError& e)
+  {
+    throw MemoryError("prototype '" + label + "': " + e.what());
+  }
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(grey, &lo, &hi);
+  if (hi - lo < 1.0)
+    throw MemoryError("prototype '" + label + "' has no edges: the image is uniform");
+  original_size_ = grey.size();
+
+  const cv::Mat full_mask = silhouetteMask(grey);
+  std::vector<cv::Point> on;
+  cv::findNonZero(full_mask, on);
+  if (on.empty() || on.size() == full_mask.total())
+    throw MemoryError("prototype '" + label + "' has no edges: no shape against a background");
+  const cv::Rect box = cv::boundingRect(on);
+
+  // Normalise: the shape's longer side becomes `size` px, with a margin so
+  // that rays starting just outside the shape still see it.
+  const double scale = static_cast<double>(size) / std::max(box.width, box.height);
+  const int w = std::max(1, static_cast<int>(std::lround(box.width * scale)));
+  const int h = std::max(1, static_cast<int>(std::lround(box.height * scale)));
+  const int margin = tableMargin(size);
+  cv::Mat resized;
+  cv::resize(full_mask(box), resized, cv::Size(w, h), 0, 0, scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR);
+  cv::threshold(resized, resized, 127, 255, cv::THRESH_BINARY);
+  mask_ = cv::Mat::zeros(h + 2 * margin, w + 2 * margin, CV_8UC1);
+  resized.copyTo(mask_(cv::Rect(margin, margin, w, h)));
+
+  // Pixel-centre convention: table = (original - box.tl + 0.5) * s - 0.5 + margin.
+  const double sx = static_cast<double>(w) / box.width, sy = static_cast<double>(h) / box.height;
+  original_to_table_ = cv::Matx23d(sx, 0, (0.5 - box.x) * sx - 0.5 + margin,  //
+                                   0, sy, (0.5 - box.y) * sy - 0.5 + margin);
+  table_to_original_ = cv::Matx23d(1 / sx, 0, -original_to_table_(0, 2) / sx,  //
+                                   0, 1 / sy, -original_to_table_(1, 2) / sy);
+
+  cv::findNonZero(mask_, interior_);
+  if (interior_.empty())
+    throw MemoryError("prototype '" + label + "' has no edges after normalising to " + std::to_string(size) + " px");
+  buildTable(edge_threshold);
+  buildOutline();
+}
+
+cv::Mat Prototype::scanImage() const { return prepareScanImage(mask_, blur_sigma_); }
+
+void Prototype::sizeNodes()
+{
+  node_cols_ = (mask_.cols + stride_ - 1) / stride_;
+  node_rows_ = (mask_.rows + stride_ - 1) / stride_;
+}
+
+// Paper 4.4: every node holds its radial scan in every direction bin, made
+// by the scanner the V-particles use, in the smoothed mask: with stride 1 a
+// lookup equals a direct scan. Far from the outline the smoothed mask is
+// flat, so each ray leaps over the free space a distance transform gives.
+void Prototype::buildTable(double edge_threshold)
+{
+  const int cols = mask_.cols, rows = mask_.rows;
+  cv::Mat inside_distance, outside_distance, inverted;
+  cv::distanceTransform(mask_, inside_distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::bitwise_not(mask_, inverted);
+  cv::distanceTransform(inverted, outside_distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  // Distance to the nearest pixel of the other class (one term is 0 everywhere).
+  cv::Mat free_space = inside_distance + outside_distance;
+  // A Gaussian of sigma leaves a grey step above the threshold only within
+  // sigma * sqrt(2 ln(255 / threshold)) px of the outline; add 1 px for the
+  // samples either side of a step, 0.71 px for rounding to the pixel and
+  // 0.5 px from pixel centre to outline.
+  const double reach = blur_sigma_ > 0 ? blur_sigma_ * std::sqrt(2.0 * std::log(std::max(1.0, 255.0 / edge_threshold))) : 0.0;
+  free_space -= static_cast<float>(reach + 2.5);
+  cv::max(free_space, 0.0, free_space);
+
+  const cv::Mat scan_image = scanImage();
+  const RadialScanner scanner(scan_image, edge_threshold, kMaxTableDistance + 2.f, free_space);
+  sizeNodes();
+  table_.assign(static_cast<std::size_t>(node_cols_) * node_rows_ * kDirectionBins, kNoEdge);
+  // A node sits at the centre of its stride x stride block of pixels.
+  const float node_offset = 0.5f * static_cast<float>(stride_ - 1);
+  float dir_x[kDirectionBins], dir_y[kDirectionBins];
+  for (int b = 0; b < kDirectionBins; ++b)
+  {
+    dir_x[b] = static_cast<float>(std::cos(binToAngle(b)));
+    dir_y[b] = static_cast<float>(std::sin(binToAngle(b)));
+  }
+  // A row of nodes per piece of work, on OpenCV's threads (parallel_for.h).
+  parallelFor(node_rows_, resolveThreads(0), [&](int j) {
+    for (int i = 0; i < node_cols_; ++i)
+    {
+      std::uint8_t* cell = &table_[(static_cast<std::size_t>(j) * node_cols_ + i) * kDirectionBins];
+      const float x = std::min(static_cast<float>(cols - 1), static_cast<float>(i * stride_) + node_offset);
+      const float y = std::min(static_cast<float>(rows - 1), static_cast<float>(j * stride_) + node_offset);
+      for (int b = 0; b < kDirectionBins; ++b)
+      {
+        const RayHit hit = scanner.scan(x, y, dir_x[b], dir_y[b]);
+        if (hit.valid && hit.distance <= kMaxTableDistance)
+          cell[b] = static_cast<std::uint8_t>(std::lround(hit.distance / kDistanceUnit));
+      }
+    }
+  });
+}
+
+void Prototype::buildOutline()
+{
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(mask_.clone(), contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
+  outline_.clear();
+  for (const auto& contour : contours)
+  {
+    const int n = static_cast<int>(contour.size());
+    if (n < 8)
+      continue;
+    const int stride = std::max(1, static_cast<int>(kOutlineSpacing));
+    for (int i = 0; i < n; i += stride)
+    {
+      const cv::Point2f prev = contour[(i - 3 + n) % n], next = contour[(i + 3) % n];
+      cv::Point2f tangent = next - prev;
+      const float len = std::hypot(tangent.x, tangent.y);
+      if (len < 1e-3f)
+        continue;
+      tangent /= len;
+      cv::Point2f normal(tangent.y, -tangent.x);
+      // Orient outwards: the pixel 2 px along the normal must be background.
+      const cv::Point2f p = contour[i];
+      const cv::Point probe(cvRound(p.x + 2 * normal.x), cvRound(p.y + 2 * normal.y));
+      const bool probe_inside = probe.x >= 0 && probe.y >= 0 && probe.x < mask_.cols && probe.y < mask_.rows &&
+                                mask_.at<uchar>(probe) != 0;
+      if (probe_inside)
+        normal = -normal;
+      // Contour pixels are the shape's last pixels: the edge lies half a pixel outwards.
+      outline_.push_back({p + 0.5f * normal, normal});
+    }
+  }
+}
+}  // namespace amcr

@@ -1,0 +1,168 @@
+#!/usr/bin/python3
+"""The core library's folders form layers: a file of include/amcr/<folder>/ or src/core/<folder>/
+includes headers of its own folder and of the folders below it, never above; no header includes
+itself through others; no file of src/ or include/ is longer than MAX_LINES; every public header
+is in a folder or is one of the library's face (FACE, at the top of include/amcr/).
+
+  test/test_core_layout.py [--xml FILE]   (JUnit XML for catkin; well under a second)
+"""
+import collections
+import os
+import re
+import sys
+import unittest
+
+# The folders of include/amcr and src/core, lowest first: each may include only itself and the
+# folders above it in this list.
+LAYERS = [
+    ("base", "geometry, parameters, errors, random streams, threads, resource bounds: used by all"),
+    ("io", "image and parameter files, byte streams, prototype directories: files, not the method"),
+    ("scan", "the radial edge scans (spec 'Radial edge scans'): what a particle reads of an image"),
+    ("memory", "the prototypes, their lookup tables (spec 'Lookup tables'), the memory and its prior"),
+    ("filter", "V- and M-particles: motion model Q, observation model O, resampling (paper 3.6, 4.1-4.3)"),
+    ("extraction", "objects out of the particle clusters, fitted, verified and tracked (spec 'Output')"),
+]
+# The library's face, at the top of include/amcr/ (and src/core/): it may include every folder.
+FACE = ["recognizer.h", "overlay.h", "frame_budget.h", "working_scale.h"]
+# The longest file of src/ and include/: one idea a file.
+MAX_LINES = 450
+
+HERE = os.path.dirname(os.path.realpath(__file__))
+PACKAGE = os.path.dirname(HERE)
+PUBLIC = os.path.join(PACKAGE, "include", "amcr")
+CORE = os.path.join(PACKAGE, "src", "core")
+TOP = "(top)"  # the folder of the face
+RANK = {name: k for k, (name, _) in enumerate(LAYERS)}
+RANK[TOP] = len(LAYERS)
+INCLUDE = re.compile(r'^\s*#\s*include\s*(?:"([^"]+)"|<(amcr/[^>]+)>)', re.M)
+
+
+def files_under(root, extensions):
+    found = []
+    for folder, _, names in os.walk(root):
+        found += [os.path.join(folder, n) for n in names if n.endswith(extensions)]
+    return sorted(found)
+
+
+def folder_of(path):
+    """The layer of a file of include/amcr or src/core: its first folder there, or TOP."""
+    for root in (PUBLIC, CORE):
+        if path.startswith(root + os.sep):
+            parts = os.path.relpath(path, root).split(os.sep)
+            return parts[0] if len(parts) > 1 else TOP
+    raise ValueError(path + " is neither in include/amcr nor in src/core")
+
+
+def resolve(including, name, angled):
+    """The file an include names: amcr/... in include/; a private header beside the including
+    file, else under src/core (the core's private include directory); None when there is none."""
+    if angled or name.startswith("amcr/"):
+        path = os.path.join(PACKAGE, "include", name)
+        return path if os.path.isfile(path) else None
+    for base in (os.path.dirname(including), CORE):
+        path = os.path.normpath(os.path.join(base, name))
+        if os.path.isfile(path):
+            return path
+    return None
+
+
+def include_graph():
+    """{file: [(included file or None, the include's text)]} over include/amcr and src/core."""
+    graph = {}
+    for path in files_under(PUBLIC, (".h",)) + files_under(CORE, (".h", ".cpp")):
+        with open(path) as f:
+            text = f.read()
+        edges = []
+        for quoted, angled in INCLUDE.findall(text):
+            name = quoted or angled
+            edges.append((resolve(path, name, bool(angled)), name))
+        graph[path] = edges
+    return graph
+
+
+def short(path):
+    return os.path.relpath(path, PACKAGE)
+
+
+class Layers(unittest.TestCase):
+    maxDiff = None
+
+    def test_every_folder_is_declared(self):
+        for root in (PUBLIC, CORE):
+            folders = sorted(n for n in os.listdir(root) if os.path.isdir(os.path.join(root, n)))
+            self.assertEqual([f for f in folders if f not in RANK], [], "folders of %s not in LAYERS" % short(root))
+        self.assertEqual(len(RANK), len(LAYERS) + 1, "a folder is declared twice")
+
+    def test_every_include_resolves(self):
+        unresolved = ["%s: %s" % (short(path), name)
+                      for path, edges in include_graph().items() for target, name in edges if target is None]
+        self.assertEqual(unresolved, [])
+
+    def test_folders_include_only_themselves_and_folders_below(self):
+        upward = []
+        for path, edges in include_graph().items():
+            here = folder_of(path)
+            for target, name in edges:
+                if target is None:
+                    continue
+                there = folder_of(target)
+                if RANK[there] > RANK[here]:
+                    upward.append("%s (%s) includes %s (%s, above)" % (short(path), here, name, there))
+        self.assertEqual(upward, [], "\n".join(upward))
+
+    def test_no_include_cycle(self):
+        graph = {path: sorted({t for t, _ in edges if t is not None}) for path, edges in include_graph().items()}
+        state = collections.defaultdict(int)  # 0 unseen, 1 on the path, 2 done
+        cycles = []
+
+        def visit(node, path):
+            state[node] = 1
+            path.append(node)
+            for nxt in graph.get(node, []):
+                if state[nxt] == 1:
+                    cycles.append(" -> ".join(short(p) for p in path[path.index(nxt):] + [nxt]))
+                elif state[nxt] == 0:
+                    visit(nxt, path)
+            path.pop()
+            state[node] = 2
+
+        for node in sorted(graph):
+            if state[node] == 0:
+                visit(node, [])
+        self.assertEqual(cycles, [], "\n".join(cycles))
+
+    def test_every_public_header_is_in_a_folder_or_the_face(self):
+        loose = sorted(n for n in os.listdir(PUBLIC) if os.path.isfile(os.path.join(PUBLIC, n)))
+        self.assertEqual(sorted(set(loose) - set(FACE)), [], "headers at the top of include/amcr not in FACE")
+        self.assertEqual(sorted(set(FACE) - set(loose)), [], "FACE names headers that are not there")
+
+    def test_a_source_lies_in_the_folder_of_its_header(self):
+        headers = {}
+        for path in files_under(PUBLIC, (".h",)):
+            headers[os.path.splitext(os.path.basename(path))[0]] = folder_of(path)
+        misplaced = []
+        for path in files_under(CORE, (".cpp",)):
+            name = os.path.splitext(os.path.basename(path))[0]
+            if name in headers and headers[name] != folder_of(path):
+                misplaced.append("%s: its header is in %s" % (short(path), headers[name]))
+        self.assertEqual(misplaced, [])
+
+
+class FileLength(unittest.TestCase):
+    maxDiff = None
+
+    def test_no_file_of_src_or_include_is_too_long(self):
+        long_files = []
+        for root in ("src", "include"):
+            for path in files_under(os.path.join(PACKAGE, root), (".h", ".hpp", ".cpp", ".py")):
+                with open(path) as f:
+                    lines = sum(1 for _ in f)
+                if lines > MAX_LINES:
+                    long_files.append("%s: %d lines" % (short(path), lines))
+        self.assertEqual(long_files, [], "over %d lines:\n%s" % (MAX_LINES, "\n".join(long_files)))
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, os.path.join(HERE, "bench"))
+    from junit_runner import run_module
+    sys.exit(run_module(sys.modules[__name__], "test_core_layout"))
