@@ -24,8 +24,6 @@ HERE = os.path.dirname(os.path.realpath(__file__))
 sys.path.insert(0, HERE)
 
 sys.path.insert(0, os.path.join(HERE, "..", "..", "bench"))
-import report  # noqa: E402  bench/report.py
-import real_camera_cube  # noqa: E402  bench/real_camera_cube.py
 # bench/make_sequences's modules, beside it.
 import sequence_files  # noqa: E402
 import sequence_memories  # noqa: E402
@@ -34,6 +32,10 @@ import sequence_real_camera  # noqa: E402
 import sequence_rendering  # noqa: E402
 import sequence_suites  # noqa: E402
 from sequence_suites import HEIGHT, SEED_INDEX, SUITES, WIDTH  # noqa: E402
+# bench/report.py's instance matching and real-camera figures, and the cube's truth.
+from report_instances import instance_sequence, instance_summary, match_instances  # noqa: E402
+import report_real_camera  # noqa: E402
+import real_camera_cube  # noqa: E402  bench/real_camera_cube.py
 
 DATA = os.environ.get("AMCR_DATA", os.path.join(HERE, "..", "..", "..", "shared", "data"))
 MPEG7 = os.path.join(DATA, "mpeg7")
@@ -311,7 +313,7 @@ class RealCameraCube(unittest.TestCase):
         a = np.asarray(frame["prototype_to_image"])
         turned = np.hstack([a[:, :2] @ turn, (a[:, :2] @ (c - turn @ c) + a[:, 2]).reshape(2, 1)])
         rows = {0: {"objects": [{"label": "cube-face", "prototype_to_image": turned.tolist()}], "time_ms": 1.0}}
-        m = report.real_camera_sequence(truth, rows)
+        m = report_real_camera.real_camera_sequence(truth, rows)
         self.assertEqual(m["right_share"], 1.0)
         self.assertLess(m["corner_error_median"], 1.0)
 
@@ -327,21 +329,21 @@ class InstanceMatching(unittest.TestCase):
 
     def test_one_of_two_copies_found_is_half(self):
         truth = [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]
-        found = report.match_instances(truth, [copy_at("cup", 305, 104)], self.sizes)
+        found = match_instances(truth, [copy_at("cup", 305, 104)], self.sizes)
         self.assertEqual(found, [None, 0])
         # The radius: max(10 px, 0.3 x 100 px) = 30 px; 31 px away finds nothing.
-        self.assertEqual(report.match_instances(truth, [copy_at("cup", 331, 100)], self.sizes), [None, None])
+        self.assertEqual(match_instances(truth, [copy_at("cup", 331, 100)], self.sizes), [None, None])
 
     def test_a_wrong_label_does_not_count(self):
         truth = [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]
-        self.assertEqual(report.match_instances(truth, [copy_at("dog", 100, 100)], self.sizes), [None, None])
+        self.assertEqual(match_instances(truth, [copy_at("dog", 100, 100)], self.sizes), [None, None])
 
     def test_one_report_finds_one_instance(self):
         truth = [copy_at("cup", 100, 100), copy_at("cup", 120, 100)]  # both within 30 px of the report
-        found = report.match_instances(truth, [copy_at("cup", 110, 100)], self.sizes)
+        found = match_instances(truth, [copy_at("cup", 110, 100)], self.sizes)
         self.assertEqual(sorted(found, key=str), [0, None])
         # Two reports: each instance its own, even when the first report is nearer the second instance.
-        found = report.match_instances(truth, [copy_at("cup", 118, 100), copy_at("cup", 135, 100)], self.sizes)
+        found = match_instances(truth, [copy_at("cup", 118, 100), copy_at("cup", 135, 100)], self.sizes)
         self.assertEqual(found, [0, 1])
 
     def test_a_shape_reported_turned_is_at_its_centroid(self):
@@ -350,32 +352,32 @@ class InstanceMatching(unittest.TestCase):
         # (141, 100), 59 px from where the truth has it, the centroid in place.
         truth = [copy_at("cup", 200, 100)]
         turned = {"label": "cup", "prototype_to_image": [[-1.0, 0.0, 170.5 + 20], [0.0, -1.0, 100 + 24.5]]}
-        self.assertEqual(report.match_instances(truth, [turned], self.sizes), [None])
-        self.assertEqual(report.match_instances(truth, [turned], self.sizes, {"cup": (20.0, 24.5)}), [0])
+        self.assertEqual(match_instances(truth, [turned], self.sizes), [None])
+        self.assertEqual(match_instances(truth, [turned], self.sizes, {"cup": (20.0, 24.5)}), [0])
 
     def test_sequence_figures_and_track_ids(self):
         truth = {"frames": [{"frame": k, "objects": [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]}
                             for k in range(4)]}
         both = [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]
         rows = {0: {"objects": both[:1]}, 1: {"objects": both}, 2: {"objects": both}, 3: {"objects": both}}
-        s = report.instance_sequence(truth, rows, self.sizes)
+        s = instance_sequence(truth, rows, self.sizes)
         self.assertEqual(s["shares"], {1: 0.5, 2: 1.0, 3: 1.0, 4: 1.0})
         self.assertEqual(s["at"], 4)  # 60, or the last frame when shorter
         self.assertTrue(s["all_at"] and s["held"])
-        m = report.instance_summary([s])
+        m = instance_summary([s])
         self.assertAlmostEqual(m["found_share"], 3.5 / 4)
         self.assertNotIn("tracks_per_instance", m)  # no track ids reported: no fragmentation figure
         tracked = [dict(o, track_id=t, state="confirmed") for o, t in zip(both, (7, 8))]
         rows = {k: {"objects": tracked} for k in range(4)}
         rows[2] = {"objects": [dict(tracked[0], track_id=9), tracked[1]]}  # copy 0 lost and found again
-        m = report.instance_summary([report.instance_sequence(truth, rows, self.sizes)])
+        m = instance_summary([instance_sequence(truth, rows, self.sizes)])
         self.assertAlmostEqual(m["tracks_per_instance"], 1.5)
         self.assertEqual(m["states"], {"confirmed": 1.0})
 
     def test_held_needs_ninety_percent_after_frame_60(self):
         truth = {"frames": [{"frame": k, "objects": [copy_at("cup", 100, 100)]} for k in range(80)]}
         rows = {k: {"objects": [copy_at("cup", 100, 100)] if k < 60 or k % 5 else []} for k in range(80)}
-        s = report.instance_sequence(truth, rows, self.sizes)  # found at frame 60, in 16 of the 20 after it
+        s = instance_sequence(truth, rows, self.sizes)  # found at frame 60, in 16 of the 20 after it
         self.assertTrue(s["all_at"])
         self.assertFalse(s["held"])
 
