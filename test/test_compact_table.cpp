@@ -17,7 +17,8 @@ namespace
 using amcr_test::ShapeId;
 using amcr_test::cachedPrototype;
 
-// Compact tables (issue 17): a table at stride s holds one scan per s x s
+// Compact tables, so that a memory of a thousand prototypes and more fits:
+// a table at stride s holds one scan per s x s
 // block, at the block's centre, so its size is the nodes times the bins and
 // every pixel of a block reads the same scan.
 TEST(CompactTable, StrideDividesTheNodesAndPixelsOfABlockShareOneScan)

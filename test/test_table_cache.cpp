@@ -1,4 +1,5 @@
-// The table cache and the parallel table build (issue 16, "Speed"): a
+// The table cache and the parallel table build, which spare the rebuild of
+// every table at each start (the tables take most of a load): a
 // second load reads the tables back byte for byte; a cache file that is
 // truncated, damaged, stale (other parameters) or not a table file at all
 // is detected, reported with the reason, rebuilt and replaced, never read;
@@ -227,7 +228,7 @@ TEST_F(TableCacheTest, FileForOtherParametersIsRefusedAsStaleAndRebuilt)
   EXPECT_EQ(load().cacheCounts().read, 3u);
 }
 
-// Issue 17: compact tables and label directories go through the cache too:
+// Compact tables and label directories go through the cache too:
 // the instances keep their names, and a change of table_stride is stale.
 TEST_F(TableCacheTest, CompactTablesOfInstancesAreReadBackAndAStrideChangeIsStale)
 {

@@ -1,11 +1,11 @@
 #!/usr/bin/python3
-"""Tests of the issue-14 suites of bench/make_sequences: the `memory-growth` memories (nested, each
-holding every target) and the 1280x720 suites (`paper-hd`: the `paper` frames and truth, scaled);
-of the issue-15 suites (`copies`: apart and where the truth says; `real-photos`: the six parts of
-pca_test1 where the truth says); of the several-instance memories (`within-class-1330`,
-`within-class-85`: the held-out instance in no memory, shown, and the `within-class` frames elsewhere),
-of `real-camera-cube` (its truth.json; a report of the face a quarter turn round is at the right place)
-and of bench/report.py's instance matching.
+"""Tests of bench/make_sequences: the suites of memory size and resolution (the `memory-growth`
+memories, nested, each holding every target; `paper-hd`: the `paper` frames and truth, scaled to
+1280x720); the suites of several instances in view (`copies`: apart and where the truth says;
+`real-photos`: the six parts of pca_test1 where the truth says); the several-instance memories
+(`within-class-1330`, `within-class-85`: the held-out instance in no memory, shown, and the
+`within-class` frames elsewhere); `real-camera-cube` (its truth.json; a report of the face a quarter
+turn round is at the right place); and bench/report.py's instance matching.
 Needs the MPEG-7 silhouettes (AMCR_DATA, default ../shared/data from the checkout) and opencv-doc's
 photos; skips with a message without them.
 

@@ -67,7 +67,7 @@ TEST_F(RecognizerTest, RecognizesTheShownPrototype)
   EXPECT_GE(object.track_id, 1);
   EXPECT_FALSE(object.outline.points.empty());
   EXPECT_FALSE(object.correspondences.empty());
-  // The view (issue 13): anisotropy >= 1 and its viewing angle; the homography is the affine's lift when not used.
+  // The view: anisotropy >= 1 and its viewing angle; the homography is the affine's lift when not used.
   EXPECT_GE(object.anisotropy, 1.0);
   EXPECT_NEAR(object.viewing_angle_deg, std::acos(1.0 / object.anisotropy) * 180.0 / M_PI, 1e-9);
   EXPECT_EQ(object.homography[8], 1.0);
