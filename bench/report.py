@@ -31,7 +31,8 @@ Definitions (frames are numbered from 1):
   sequences): per memory the median time per frame, its ratio to the 3-prototype memory's, top-1 at
   frame 60 (at the last frame when shorter) and the median over sequences of the frames to the first
   correct report (the first frame whose best-scored report has the target's label; never = inf).
-- instances (`two-objects`, `copies`, `real-photos`; issue 15): per frame, every truth instance is
+- instances (`two-objects`, `copies`, `real-photos`: every instance in view is to be reported): per
+  frame, every truth instance is
   matched one-to-one to a report of its label whose outline centre (the centroid of the prototype's
   silhouette mapped by the reported affine, so that a shape that looks the same turned, as a brick,
   reported turned is still at its centre) lies within max(10 px, 0.3 x the instance's size: the

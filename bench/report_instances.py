@@ -12,7 +12,7 @@ import numpy as np
 
 from report_common import METHOD_NAMES, METHODS, affine, fmt, mean, read_jsonl
 
-INSTANCE_SUITES = ["two-objects", "copies", "real-photos"]  # issue 15: every instance in view is to be reported
+INSTANCE_SUITES = ["two-objects", "copies", "real-photos"]  # every instance in view is to be reported
 INSTANCE_RADIUS = (10.0, 0.3)  # a report finds an instance within max(10 px, 0.3 x the instance's size)
 INSTANCE_AT = 60  # "all found" at this frame (the last one when shorter)
 INSTANCE_HOLD = 0.9  # "held": all found in at least this share of the frames after INSTANCE_AT
@@ -144,7 +144,8 @@ def instance_summary(per_seq):
 def instance_table(metrics):
     methods = [m for m in METHODS if m in metrics]
     at = min(metrics[m]["at"] for m in methods)
-    lines = ["Instances (issue 15): per frame, each instance in view is matched to at most one report of its label "
+    lines = ["Instances (each one in view is to be reported): per frame, each instance in view is matched to at most "
+             "one report of its label "
              "whose outline centre (its silhouette's centroid) is within max(%g px, %g x the instance's size) of the instance's centre, one "
              "report to one instance at most. All found and held: all instances found at frame %d and in at least "
              "%d%% of the frames after it." % (INSTANCE_RADIUS[0], INSTANCE_RADIUS[1], at, 100 * INSTANCE_HOLD), "",

@@ -50,6 +50,6 @@ def growth_section(growth):
             fmt(m.get("init", {}).get("init_ms", 0) / 1000, "px")))
     r = growth_ratio(growth)
     if r:
-        lines += ["", "Time per frame with %d prototypes against %d: **%.2fx** (issue 14's aim: at most %.1fx: %s)."
+        lines += ["", "Time per frame with %d prototypes against %d: **%.2fx** (the aim: at most %.1fx: %s)."
                   % (r[1], r[0], r[2], GROWTH_AIM, "met" if r[2] <= GROWTH_AIM else "not met")]
     return "\n".join(lines) + "\n"

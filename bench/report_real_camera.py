@@ -18,8 +18,8 @@ REAL_TEXT = """\
 Real frames (Debian's visp-images-data, grey, at their own size); memory: the target `mire`
 drawn from its measured geometry (bench/real_camera.py) and 16 of the paper's prototypes. The truth
 is a homography per frame from the target's own pattern and edges (bench/real_camera.py), unknown
-frames unscored. Aim of issue 13: >= 90% of the scored frames at the right place after the first
-report, the first report within 30 frames."""
+frames unscored. The aim for a real camera's views: >= 90% of the scored frames at the right place
+after the first report, the first report within 30 frames."""
 
 REAL_CUBE_TEXT = """\
 Real frames of visp-images-data's `cube` (80, 384x288 grey: a hand-held camera over a black cube with

@@ -56,7 +56,7 @@ def summary_section(everything, updates=None, growth=None):
         aims.append("- relational-particle updates per second on one core >= 10 M: **%.2f M** at best (%s, the "
                     "whole iteration counted) (%s)" % (updates[0] / 1e6, updates[1],
                                                       "met" if updates[0] >= 1e7 else "not met"))
-    lines += ["", "The aims of issue 5 against these figures:", ""] + aims
+    lines += ["", "The aims for accuracy and speed against these figures:", ""] + aims
     later = []
     r = growth_ratio(growth or {})
     if r:
@@ -75,7 +75,7 @@ def summary_section(everything, updates=None, growth=None):
             later.append("- `%s`: %s**%s** false positives per frame (`%s` is not in this run: run both to compare)"
                          % (high, "top-1 at frame 60 **%s**, " % fmt(b, "pct") if b is not None else "", fmt(fb, ""), low))
     if later:
-        lines += ["", "The aims of issue 14 against these figures:", ""] + later
+        lines += ["", "The aims for memory size and resolution against these figures:", ""] + later
     return "\n".join(lines)
 
 

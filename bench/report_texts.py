@@ -22,17 +22,18 @@ halves of the frame. `oblique`: the `paper` sequences (same seeds, memory, clutt
 the target seen obliquely: squashed along an image axis (random per sequence) to anisotropy
 1.5-3 (48-70 degrees off the normal), area kept, no shear. `faint`: the `paper` sequences (same
 seeds) printed faint and out of focus: the contrast cut to a quarter about grey 128 after the
-lighting, 2 px (sigma) of defocus added to the drawn blur, the noise as drawn. `memory-growth` (issue 14): 6
-sequences (2 with --quick) whose targets are 3 fixed classes, run once per memory of 3, 17, 35 and
-70 prototypes (nested: 3 of the paper's 17, the 17, the 17 and 18 other classes, all 70; fixed,
-whatever the seed); distractors are random blobs. `paper-hd` and `clutter-only-hd` (issue 14): the
-`paper` and `clutter-only` frames (same seeds, draws and noise) resampled 1.5x (bilinear) to
-960x720 and centred in 1280x720, the 160 px left and right showing the photo mirrored (no shape);
-the truth is the 640x480 truth composed with x' = 1.5 x + 160.25, y' = 1.5 y + 0.25, exact.
-`copies` (issue 15): 4-6 copies of one prototype of the paper memory (class drawn per sequence),
-each at its own pose (longer side 90-150 px, any rotation), none overlapping (3 px apart at least),
-moving together (drift, slow spin, breathing scale) over the `paper` clutter. `real-photos` (issue
-15): opencv-doc's photo `pca_test1.jpg` (six alike dark parts on a backlit panel) under a synthetic
+lighting, 2 px (sigma) of defocus added to the drawn blur, the noise as drawn. `memory-growth` (time
+per frame as the memory grows): 6 sequences (2 with --quick) whose targets are 3 fixed classes, run
+once per memory of 3, 17, 35 and 70 prototypes (nested: 3 of the paper's 17, the 17, the 17 and 18
+other classes, all 70; fixed, whatever the seed); distractors are random blobs. `paper-hd` and
+`clutter-only-hd` (the same scenes at a higher resolution): the `paper` and `clutter-only` frames
+(same seeds, draws and noise) resampled 1.5x (bilinear) to 960x720 and centred in 1280x720, the 160
+px left and right showing the photo mirrored (no shape); the truth is the 640x480 truth composed
+with x' = 1.5 x + 160.25, y' = 1.5 y + 0.25, exact. `copies` (several instances in view): 4-6 copies
+of one prototype of the paper memory (class drawn per sequence), each at its own pose (longer side
+90-150 px, any rotation), none overlapping (3 px apart at least), moving together (drift, slow spin,
+breathing scale) over the `paper` clutter. `real-photos` (several instances in a real photo):
+opencv-doc's photo `pca_test1.jpg` (six alike dark parts on a backlit panel) under a synthetic
 camera motion (drift, slow turn and zoom) with mild noise; memory: the part cut from the photo
 (Otsu, the component of median area) and 16 of the paper memory; its truth affines are approximate
 (from the parts' moments), their centres are the parts' centroids. The Hu-moments baseline's affine

@@ -35,9 +35,9 @@ SUITES = {
     "paper-hd": dict(memory="paper17", show="same", sequences=(17, 3), frames=(80, 40), like="paper", hd=True),
     "clutter-only-hd": dict(memory="paper17", show="none", sequences=(12, 2), frames=(80, 40), like="clutter-only",
                             hd=True),
-    # 4-6 copies of one memory shape in view at once (issue 15), moving together.
+    # 4-6 copies of one memory shape in view at once, moving together: each is to be reported.
     "copies": dict(memory="paper17", show="copies", sequences=(10, 2), frames=(80, 40), copies=(4, 6)),
-    # A real photograph of six alike flat parts under a synthetic camera motion (issue 15).
+    # A real photograph of six alike flat parts under a synthetic camera motion: each is to be reported.
     "real-photos": dict(memory="paper16+cut", show="photo", sequences=(3, 1), frames=(80, 40)),
     # Several instances per class in memory (prototypes/<class>/), the shown one held out of it.
     # `within-class` (its seeds, its draws) with the memory and the shown instance changed only.
@@ -54,7 +54,7 @@ SEED_INDEX = {name: i for i, name in enumerate(
     sorted(["paper", "mpeg7-70", "within-class", "similar", "clutter-only", "two-objects"])
     + ["oblique", "real-camera", "memory-growth", "paper-hd", "clutter-only-hd", "copies", "real-photos",
        "within-class-1330", "within-class-85", "real-camera-cube", "faint"])}
-GROWTH_SEED = 14  # the fixed draw of the `memory-growth` memories (issue 14), not --seed
+GROWTH_SEED = 14  # the fixed draw of the `memory-growth` memories, not --seed
 HOLDOUT_SEED = 17  # the fixed draw of the held-out instances and the 5-instance memory, not --seed
 # `paper-hd`, `clutter-only-hd`: the 640x480 frame scaled by HD_SCALE and centred in HD_SIZE.
 HD_SIZE, HD_SCALE = (1280, 720), 1.5
