@@ -75,8 +75,9 @@ BENCHMARK(BM_RecognizerStep)
     ->Args({30, 60, 70})
     ->Unit(benchmark::kMillisecond);
 
-// One iteration with the defaults (issue 14: a budget of M-particles per
-// V-particle, the proposal index, KLD-sampling): args V-particles,
+// One iteration with the defaults (a budget of M-particles per V-particle,
+// the proposal index, KLD-sampling: the time no longer grows with the
+// memory as with the paper's count per prototype): args V-particles,
 // prototypes. items/s = relational-particle updates per second, at the mean
 // count KLD-sampling left.
 void BM_BudgetStep(benchmark::State& state)
@@ -155,7 +156,7 @@ const amcr_test::TempDir& imageDirectory(int count)
   return *directories[count];
 }
 
-// A whole memory as the nodelet loads it (issue 16): the tables of a
+// A whole memory as the nodelet loads it: the tables of a
 // directory of images, then the proposal index (its k-d tree in the same
 // cache). Args: prototypes, OpenCV
 // threads, cache (0: none, 1: cold, emptied before each run, so the files

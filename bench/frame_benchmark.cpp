@@ -1,4 +1,4 @@
-// A whole frame (issue 16): 640x480, the default counts (60 V-particles,
+// A whole frame: 640x480, the default counts (60 V-particles,
 // KLD-sampling of up to 1000 M-particles each, the proposal index), the
 // optical flow on, a memory of drawn prototypes, an arrow moving over
 // clutter. Args: prototypes, threads (0 = every core). The counters split

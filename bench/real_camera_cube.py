@@ -9,7 +9,7 @@ white dots are the border of a 4x4 grid (3 dot spacings across), a ring shifted 
 corner. Per frame:
 
 1. The ring. At global thresholds 160, 130, 190 and 100 (after a Gaussian blur of 0.8 px), bright
-   components shaped like ellipses (real_camera.ellipse_blobs) are candidates. A dot and two of its
+   components shaped like ellipses (printed_target.ellipse_blobs) are candidates. A dot and two of its
    6 nearest neighbours (areas within a factor 2.5, 50-130 degrees apart, the prototype's
    handedness) are taken as grid (0, 0), (1, 0), (0, 1); the 12 grid positions are predicted and the
    nearest blobs taken (within 0.35, 0.25, 0.2 spacings, the homography fitted to them each time).
@@ -19,7 +19,7 @@ corner. Per frame:
    labelling up to a quarter turn. (On cube: found at every threshold in all 80 frames, never on
    the side faces, whose dots are too squashed; RMS 0.05-0.10 px; dot spacing 15.3-19.3 px.)
 2. The edges. Around the face predicted from the ring with the mean margin on every side, each side
-   is searched and fitted as for mire-2 (real_camera.refine_square: the rising step nearest the
+   is searched and fitted as for mire-2 (printed_target.refine_square: the rising step nearest the
    predicted side along 31 normals, dark inside, bright outside or the thin bright line along the
    cube's edge where another face adjoins; Huber line fits; adjacent lines meet at the corners).
    The labelling: the quarter turn under which the face's four margins (corners brought back to the
@@ -50,9 +50,9 @@ from a frame.
 4-fold symmetric but for its shift (2.8% of the side off the face's centre): a quarter turn moves
 every dot by 0.165 spacings (4.0% of the side), a half turn by 0.233 (5.6%), 3.2 and 4.5 px on the
 largest views, about a dot's radius. The scoring takes the best of the four labellings. The best
-affine approximation (`real_camera.best_affine`) is the least-squares affine over a 5x5 grid of the face mapped
-by the homography. Over the known frames the target (the prototype's longer side at the affine's area
-scale) is 68-86 px and the affine's anisotropy 1.04-1.31 (`--check` prints both).
+affine approximation (`printed_target.best_affine`) is the least-squares affine over a 5x5 grid of the
+face mapped by the homography. Over the known frames the target (the prototype's longer side at the
+affine's area scale) is 68-86 px and the affine's anisotropy 1.04-1.31 (`--check` prints both).
 
 Result on cube: 77 of 80 frames known. Frames 43-45 are unknown: the face's top edge, where the
 collage beyond its left end is dark, is pulled outward there (an end 2.1-3.3 px off the ring's
@@ -67,9 +67,9 @@ import os
 import cv2
 import numpy as np
 
-import real_camera  # the mire's truth, beside this file: its blob finder and edge search are reused
+import printed_target  # beside this file: what the mire's truth and this one share (blob finder, edge search)
 
-VISP_DIR = real_camera.VISP_DIR
+VISP_DIR = printed_target.VISP_DIR
 SEQUENCE = "cube"
 
 # The 12 dots of a face: the border of a 4x4 grid, in grid units (one dot spacing), clockwise from
@@ -86,7 +86,7 @@ CUBE = {
 }
 
 PROTOTYPE_SIZE = 256
-PROTOTYPE_MARGIN = real_camera.PROTOTYPE_MARGIN  # px of background around the face in the prototype image
+PROTOTYPE_MARGIN = printed_target.PROTOTYPE_MARGIN  # px of background around the face in the prototype image
 
 # The corner permutations a recognizer cannot tell apart: the four quarter turns. The face is square
 # and its ring of dots 4-fold symmetric but for the ring's shift towards one corner (the margins
@@ -124,14 +124,14 @@ def prototype_shape(geometry=CUBE):
 
 
 def square_to_prototype(geometry=CUBE):
-    """3x3 map from the normalised face ([0, 1]^2) to prototype pixels (real_camera's, with the
-    same margin)."""
-    return real_camera.unit_square_to_prototype(prototype_shape(geometry))
+    """3x3 map from the normalised face ([0, 1]^2) to prototype pixels (as the mire's, with the
+    same margin: printed_target.unit_square_to_prototype)."""
+    return printed_target.unit_square_to_prototype(prototype_shape(geometry))
 
 
 def prototype_corners(geometry=CUBE):
     """The face's corners in prototype pixels, clockwise from the top-left."""
-    return real_camera.unit_square_corners(square_to_prototype(geometry))
+    return printed_target.unit_square_corners(square_to_prototype(geometry))
 
 
 def draw_prototype(geometry=CUBE):
@@ -139,10 +139,10 @@ def draw_prototype(geometry=CUBE):
     (real_camera.draw_prototype): white shape on black, i.e. the black face is the white shape and
     its white dots are holes in it."""
     radius = geometry["dot_radius"] / face_size(geometry)[1]  # a share of the face's height
-    return real_camera.draw_holed_target(prototype_shape(geometry), [(dot, radius) for dot in face_dots(geometry)])
+    return printed_target.draw_holed_target(prototype_shape(geometry), [(dot, radius) for dot in face_dots(geometry)])
 
 
-apply = real_camera.apply
+apply = printed_target.apply
 
 
 def ring_candidates(points, areas):
@@ -196,7 +196,7 @@ def find_ring(grey):
     blurred = cv2.GaussianBlur(grey, (0, 0), 0.8)
     rings = []
     for threshold in THRESHOLDS:
-        blobs = real_camera.ellipse_blobs(blurred, threshold)
+        blobs = printed_target.ellipse_blobs(blurred, threshold)
         if len(blobs) < len(RING):
             continue
         points = np.float64([b[:2] for b in blobs])
@@ -224,10 +224,10 @@ def margins_of(corners, h_grid):
 
 
 def find_edges(grey, h_grid, margin):
-    """Step 2: the face's 4 image corners from its edges (real_camera.refine_square, searched around
+    """Step 2: the face's 4 image corners from its edges (printed_target.refine_square, searched around
     the face predicted from the dots with `margin` on every side), or (None, reason)."""
     expand = np.array([[3 + 2 * margin, 0, -margin], [0, 3 + 2 * margin, -margin], [0, 0, 1]])
-    return real_camera.refine_square(grey, h_grid @ expand)
+    return printed_target.refine_square(grey, h_grid @ expand)
 
 
 def detect(grey, geometry=CUBE):
@@ -272,13 +272,13 @@ def track(frames_grey, geometry=CUBE, jump=JUMP):
     previous = None  # corners of the previous frame, when it was known
     for grey in frames_grey:
         corners, reason = detect(grey, geometry)
-        if corners is not None and real_camera.corner_jumped(corners, previous, jump):
+        if corners is not None and printed_target.corner_jumped(corners, previous, jump):
             corners, reason = None, "a corner jumped more than %.0f%% of the diagonal" % (100 * jump)
         if corners is None:
             out.append({"unknown": reason})
             previous = None
             continue
-        out.append(real_camera.known_frame(corners, square_to_prototype(geometry)))
+        out.append(printed_target.known_frame(corners, square_to_prototype(geometry)))
         previous = corners
     return out
 
@@ -293,7 +293,7 @@ def rectified_dots(grey, h_grid, scale=40.0, threshold=130):
     to_view = np.array([[scale, 0, 2 * scale], [0, scale, 2 * scale], [0, 0, 1]])
     size = int(7 * scale)
     view = cv2.warpPerspective(grey, to_view @ np.linalg.inv(h_grid), (size, size), flags=cv2.INTER_CUBIC)
-    blobs = real_camera.ellipse_blobs(view, threshold)
+    blobs = printed_target.ellipse_blobs(view, threshold)
     radii, aspects = [], []
     for x, y in apply(to_view, RING):
         b = min(blobs, key=lambda b: math.hypot(b[0] - x, b[1] - y))

@@ -21,7 +21,8 @@ PROTOTYPES = {"bat": "3.png", "bird": "5.png", "car": "7.png"}
 # Static distractors of other classes (never a twin of a prototype).
 DISTRACTORS = ["1.png", "11.png", "16.png"]
 # Longer side of the target in the frames, px: the size at which the demo's 640x480 scenes are
-# recognized (the same scene scaled up to 1280x720 was not, issue 12 finding 9).
+# recognized (the same scene scaled up to 1280x720 was not, when the filter still worked on the
+# whole frame rather than on the input reduced to working_resolution).
 TARGET_SIZE = 200.0
 # Path speed of the target, px per frame, and the amplitude of its turning, rad.
 SPEED = 4.0

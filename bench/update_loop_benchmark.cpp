@@ -1,4 +1,4 @@
-// Speed of the relational update loop alone (issue 16), one thread: the
+// Speed of the relational update loop alone, one thread: the
 // per-M-particle update of paper 3.6 (ObservationModel::measure, fast, and
 // measureReference) and the heading proposal of seeding (bestHeadingBin, fast,
 // and bestHeadingBinReference). The paper's comparison counts: 30 V-particles

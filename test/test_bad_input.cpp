@@ -1,4 +1,4 @@
-// Bad input gets a clear error, never a crash (issue 2, "Bad input"): the
+// Bad input gets a clear error, never a crash: the
 // prototype directory, input images of every type, V-particle displacements,
 // and recovery after an error.
 #include <cstring>
@@ -323,7 +323,7 @@ TEST_F(RecognizerInput, ImageSizeChangeReseeds)
 
 namespace
 {
-// Issue 12, finding 3: an entry whose type cannot be read is one more unusable file.
+// An entry whose type cannot be read (a symbolic link loop) is one more unusable file, not the end of the load.
 TEST(LoadDirectory, SymlinkLoopIsSkippedWithAWarningNamingIt)
 {
   amcr_test::TempDir dir;

@@ -44,7 +44,7 @@ TEST(ConfigFile, LoadsWithoutError)
     EXPECT_DOUBLE_EQ(amcr::getParameter(loaded, info.name), amcr::getParameter(defaults, info.name)) << info.name;
 }
 
-// config/large_memory.yaml (issue 17) changes only the tables' stride.
+// config/large_memory.yaml (for memories of a thousand prototypes and more) changes only the tables' stride.
 TEST(ConfigFile, LargeMemoryFileSetsCompactTablesOnly)
 {
   const std::string path = std::string(AMCR_SOURCE_DIR) + "/config/large_memory.yaml";

@@ -1,4 +1,4 @@
-// Every instance in view (issue 15), with inputs drawn in code: six copies
+// Every instance in view, with inputs drawn in code: six copies
 // of one shape over clutter are six objects with six tracks; two that leave
 // the image end their tracks while the other four stay; two touching copies
 // are two objects.
@@ -373,9 +373,11 @@ bool readPartsPhoto(PartsPhoto& photo)
 // memory, with four seeds: on average at least four of the six parts
 // reported at iteration kFindWithin, all six at once by then with at least
 // one seed, and no report that is not on a part.
-// [measured after issue 16, seeds 1-20: all six within 60 iterations with 5
-// (at 43-59), 3-5 of six with the others, 4.65 on average; seeds 1-4: 6, 5,
-// 4, 5; before issue 15 at most two of six]
+// [measured with a random stream per V-particle and the float-lane update
+// loop, seeds 1-20: all six within 60 iterations with 5 (at 43-59), 3-5 of
+// six with the others, 4.65 on average; seeds 1-4: 6, 5, 4, 5; before the
+// objects' life cycle (held objects keep V-particles, none seeded inside
+// them) at most two of six]
 TEST(EveryInstance, SixAlikePartsInAPhotograph)
 {
   PartsPhoto photo;

@@ -1,4 +1,5 @@
-// The offline runner's image files (issue 12, finding 5): a damaged JPEG in a
+// The offline runner's image files (libjpeg decodes a truncated JPEG with a
+// grey lower part and only prints a line): a damaged JPEG in a
 // directory input is a skipped frame whose problem names the file and the
 // damage; a damaged JPEG as the one input is refused, naming the damage.
 #include <fstream>

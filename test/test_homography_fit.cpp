@@ -1,4 +1,4 @@
-// The homography fit on the image (issue 13, part 2; include/amcr/extraction/homography_fit.h,
+// The homography fit on the image (include/amcr/extraction/homography_fit.h,
 // perspective_choice.h): a drawn target (dark square, light disc, four light
 // dots) under known perspective views of a tilted plane (a sweep of tilts,
 // perspective strengths and rotations) over clutter, the fit started, as the

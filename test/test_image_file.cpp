@@ -1,4 +1,5 @@
-// Image files (issue 12, finding 5): a JPEG or PNG that is truncated or has a
+// Image files (libjpeg decodes a truncated JPEG with a grey lower part and
+// only prints a line): a JPEG or PNG that is truncated or has a
 // broken marker or chunk length is refused with an InputError naming the
 // file and the damage, as a prototype (skipped with a warning) and as a
 // file read alone; the intact file is read as OpenCV reads it.

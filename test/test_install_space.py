@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The installed package runs (issue 18): from the install space alone (`catkin_make install`; its
+"""The installed package runs: from the install space alone (`catkin_make install`; its
 local_setup.bash sourced over the system's ROS, in an environment without the devel space or the
 source tree), `roslaunch amcr amcr.launch` starts the nodelet from the installed library, loads
 drawn prototypes, answers an image with recognitions (the installed Python messages read them) and

@@ -1,4 +1,4 @@
-// The memory edited at runtime (issue 18, ~teach and ~remove_prototype):
+// The memory edited at runtime (~teach and ~remove_prototype):
 // PrototypeMemory::remove and isPrefixOf, and Recognizer::extendMemory, which
 // adds prototypes to a running filter without a reset. End to end: a shape the
 // memory does not hold is cut from a frame (amcr::cutShape), taught, and then

@@ -1,4 +1,4 @@
-// The objects' life cycle (track_registry.h, issue 15), on objects made in
+// The objects' life cycle (track_registry.h), on objects made in
 // code: tentative -> confirmed -> held -> lost, coasting between, the image
 // border, the bound on objects, and the message's string names.
 #include <vector>

@@ -1,4 +1,4 @@
-// The optical flow at sparse points and the track registry (issue 4): a
+// The optical flow at sparse points and the track registry: a
 // known image motion is recovered, a jump fails the flow, and track ids
 // follow outline overlap and are never reused.
 #include <cmath>

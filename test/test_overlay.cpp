@@ -195,7 +195,7 @@ TEST(DrawOverlay, ShowsTheClustersADiscriminatingVParticleDecidesBetween)
       << "a V-particle with no competing clusters draws no outline";
 }
 
-// The label shows the viewing angle and the anisotropy (issue 13), and says when the homography is used.
+// The label shows the viewing angle and the anisotropy, and says when the homography is used.
 TEST(DrawOverlay, LabelShowsTheViewingAngleAndAnisotropy)
 {
   amcr::RecognizedObject object;

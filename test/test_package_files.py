@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The package as ROS tools see it (issue 18): the parameter files are plain YAML that rosparam
+"""The package as ROS tools see it: the parameter files are plain YAML that rosparam
 reads with the values amcr::loadParams reads (numbers stay numbers), and catkin_lint finds nothing
 wrong with CMakeLists.txt and package.xml. catkin_lint is Debian's catkin-lint (scripts/test
 installs it); without it that case skips with a message.

@@ -1,5 +1,6 @@
-// The parameter file (issue 12, findings 2 and 7), read with yaml-cpp: whole
-// numbers never wrap at 32 bits, every error gives the file and the line, a
+// The parameter file, read with yaml-cpp: whole numbers never wrap at 32 bits
+// (cv::FileStorage, which read it before, wrapped them), every error gives
+// the file and the line, a
 // word parameter given a number says it takes a word, a file with or without
 // the OpenCV header is read, a file that cannot be read says why, and nesting
 // deeper than a parameter file needs is refused before it is built.

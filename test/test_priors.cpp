@@ -1,4 +1,4 @@
-// Context priors over the memory (issue 4): per-label weights bias the
+// Context priors over the memory: per-label weights bias the
 // M-particles' prototypes; a prototype of weight 0 has no M-particle at all.
 #include <map>
 #include <memory>

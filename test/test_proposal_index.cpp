@@ -231,7 +231,7 @@ TEST_F(ProposalIndexTest, TreeSearchAgreesWithExhaustiveSearch)
   EXPECT_GE(shared_total, 0.98 * exact_total) << shared_total << " of " << exact_total;  // [0.999]
 }
 
-// Issue 17: a memory too large for index_max_entries is indexed at a larger
+// A memory too large for index_max_entries is indexed at a larger
 // stride, with a warning, and still finds the tables' own scans.
 TEST_F(ProposalIndexTest, AnEntryBudgetRaisesTheStride)
 {

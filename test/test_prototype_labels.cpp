@@ -1,4 +1,4 @@
-// Class labels (issue 17): a prototype directory of label directories and
+// Class labels (a label may have several instances): a prototype directory of label directories and
 // loose files, what each bad entry gets, priors over labels, and tracks that
 // keep their id when another instance of the same label matches.
 #include <filesystem>

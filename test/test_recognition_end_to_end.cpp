@@ -1,4 +1,4 @@
-// End to end, with inputs drawn in code (issue 2, "Tests"): three distinct
+// End to end, with inputs drawn in code: three distinct
 // prototypes in memory; a sequence showing one of them under a known affine
 // (rotation, anisotropic scale, shear) over clutter (other shapes, other
 // silhouettes, lines, a brightness gradient, noise). Within a bounded number
@@ -164,16 +164,17 @@ INSTANTIATE_TEST_SUITE_P(
       return amcr_test::shapeName(info.param.shape) + "_" + std::to_string(info.param.clutter_seed);
     });
 
-// Oblique views (issue 13): anisotropy 2.5, i.e. the print seen 66 degrees
+// Oblique views: anisotropy 2.5, i.e. the print seen 66 degrees
 // off its normal (scale sqrt(2.5) times s along one axis, s / sqrt(2.5)
 // across it, s = 0.85), rotated, over the same clutter; the same bounds.
-// Measured with recognizer seeds 1-4 and issue 14's defaults (a budget of
+// Measured with recognizer seeds 1-4 and the defaults (a budget of
 // M-particles, half of the new ones from the proposal index): crescent_202
-// in 4 of 4 runs (iterations 21-87; 7-31 before issue 14). Not here because
-// they fail: arrow_201 (25 deg) was found in 1 of 4 runs (iteration 22; 3 of
-// 4 before issue 14: the index proposes frontal view shapes, so a quarter of
-// the new M-particles, not half, start oblique); the star at anisotropy 2.5
-// (scene 203, 140 deg) in none of 4 runs before issue 14 either: its thin
+// in 4 of 4 runs (iterations 21-87; 7-31 with the paper's fixed count per
+// prototype and no index). Not here because they fail: arrow_201 (25 deg)
+// was found in 1 of 4 runs (iteration 22; 3 of 4 without the index: it
+// proposes frontal view shapes, so a quarter of the new M-particles, not
+// half, start oblique); the star at anisotropy 2.5 (scene 203, 140 deg) in
+// none of 4 runs without the index either: its thin
 // points, squashed, leave few rays that meet the same edges in the image and
 // in the table (README, "Oblique views").
 Target oblique(ShapeId shape, cv::Point2d centre, double rotation_deg, std::uint64_t clutter_seed)

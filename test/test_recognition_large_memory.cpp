@@ -1,4 +1,6 @@
-// Recognition with the paper's 17 prototypes in memory (issue 14), inputs
+// Recognition with the paper's 17 prototypes in memory, where the paper's
+// fixed count of M-particles per prototype makes the time grow with the memory;
+// inputs
 // drawn in code: the five drawn silhouettes and twelve random ones. The
 // M-particles of a V-particle are a budget shared among the prototypes
 // (m_particles_per_v), a share of the new ones proposed by the index, and

@@ -1,4 +1,5 @@
-// Resource bounds (issue 12, finding 6): M-particles, input pixels and table
+// Resource bounds, so that a parameter file or an input cannot exhaust the
+// memory before anything is checked: M-particles, input pixels and table
 // memory are checked up front against the constants of resource_bounds.h,
 // with an error that gives the figure and the bound; the documented use
 // stays inside. Parameters that make each other meaningless are refused.

@@ -1,4 +1,4 @@
-// Recognition while tracking (issue 4), with inputs drawn in code: an object
+// Recognition while tracking, with inputs drawn in code: an object
 // moving over clutter (up to 5 px and 3 degrees per frame) followed by the
 // V-particles riding the optical flow; several objects at once with their
 // own affines and track ids; a frame budget that splits iterations over
@@ -355,8 +355,8 @@ TEST(FrameBudget, ResetForgetsTheTimeEstimates)
 
 // Jumps: a different scene re-seeds the V-particles whose flow fails and the
 // new object is recognized; a change of resolution re-seeds everything.
-// [measured after issue 15, seeds 1-6: the star found with 5, in 97-111 of
-// 120 frames; seed 1 never]
+// [measured with the objects' life cycle (held objects keep V-particles),
+// seeds 1-6: the star found with 5, in 97-111 of 120 frames; seed 1 never]
 TEST(Jumps, ANewSceneAndANewResolutionReseedWithoutACrash)
 {
   amcr_test::Scene first;

@@ -1,4 +1,5 @@
-// Recognition of an instance not in the memory (issue 17): the memory holds
+// Recognition of an instance not in the memory, i.e. of a class by its
+// instances (the label is the class): the memory holds
 // two instances of a label, each deformed one way from a shape, and other
 // labels; the scene shows the shape itself, halfway between the two. The
 // label must be reported, and no other.

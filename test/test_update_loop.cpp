@@ -1,4 +1,5 @@
-// The fast update loop (issue 16) against its plain references:
+// The fast update loop (blocks of M-particles in float lanes, bitwise the
+// same output) against its plain references:
 // ObservationModel::measure (blocks of M-particles in float lanes,
 // observation_model_lanes.cpp) against measureReference (one M-particle at a
 // time), and bestHeadingBin (every bin costed at once, heading_search.cpp)

@@ -1,5 +1,5 @@
-// Anisotropy and viewing angle of a prototype -> image affine (issue 13,
-// part 4; include/amcr/extraction/viewing_angle.h).
+// Anisotropy and viewing angle of a prototype -> image affine
+// (include/amcr/extraction/viewing_angle.h).
 #include <cmath>
 #include <limits>
 

@@ -1,4 +1,6 @@
-// Resolution independence (issue 14, item 5): the same drawn scene at
+// Resolution independence (the filter works on the input reduced to
+// working_resolution, so a larger frame of a scene is recognized as the
+// smaller one and costs no more): the same drawn scene at
 // 640x480 and twice as large (1280x960) is recognized within the same
 // iterations, the larger one with corners within twice the tolerance, in
 // input px; working_resolution 0, and an input not larger than

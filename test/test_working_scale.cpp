@@ -1,4 +1,5 @@
-// working_scale.h (issue 14, item 5): the working size chosen for an input,
+// working_scale.h (the filter works on the input reduced to
+// working_resolution): the working size chosen for an input,
 // and the map of a result from working px back to input px.
 #include <cmath>
 

@@ -1,18 +1,16 @@
 #!/usr/bin/python3
-"""Tests of the issue-14 suites of bench/make_sequences: the `memory-growth` memories (nested, each
-holding every target) and the 1280x720 suites (`paper-hd`: the `paper` frames and truth, scaled);
-of the issue-15 suites (`copies`: apart and where the truth says; `real-photos`: the six parts of
-pca_test1 where the truth says); of the several-instance memories (`within-class-1330`,
-`within-class-85`: the held-out instance in no memory, shown, and the `within-class` frames elsewhere),
-of `real-camera-cube` (its truth.json; a report of the face a quarter turn round is at the right place)
-and of bench/report.py's instance matching.
+"""Tests of bench/make_sequences: the suites of memory size and resolution (the `memory-growth`
+memories, nested, each holding every target; `paper-hd`: the `paper` frames and truth, scaled to
+1280x720); the suites of several instances in view (`copies`: apart and where the truth says;
+`real-photos`: the six parts of pca_test1 where the truth says); the several-instance memories
+(`within-class-1330`, `within-class-85`: the held-out instance in no memory, shown, and the
+`within-class` frames elsewhere); `real-camera-cube` (its truth.json; a report of the face a quarter
+turn round is at the right place); and bench/report.py's instance matching.
 Needs the MPEG-7 silhouettes (AMCR_DATA, default ../shared/data from the checkout) and opencv-doc's
 photos; skips with a message without them.
 
   test/bench/test_make_sequences.py [--xml FILE]   (JUnit XML for catkin; about 5 s)
 """
-import importlib.machinery
-import importlib.util
 import json
 import os
 import sys
@@ -25,24 +23,30 @@ import numpy as np
 HERE = os.path.dirname(os.path.realpath(__file__))
 sys.path.insert(0, HERE)
 
-_loader = importlib.machinery.SourceFileLoader("make_sequences", os.path.join(HERE, "..", "..", "bench", "make_sequences"))
-_spec = importlib.util.spec_from_loader("make_sequences", _loader)
-ms = importlib.util.module_from_spec(_spec)
-_loader.exec_module(ms)
 sys.path.insert(0, os.path.join(HERE, "..", "..", "bench"))
-import report  # noqa: E402  bench/report.py
+# bench/make_sequences's modules, beside it.
+import sequence_files  # noqa: E402
+import sequence_memories  # noqa: E402
+import sequence_photos  # noqa: E402
+import sequence_real_camera  # noqa: E402
+import sequence_rendering  # noqa: E402
+import sequence_suites  # noqa: E402
+from sequence_suites import HEIGHT, SEED_INDEX, SUITES, WIDTH  # noqa: E402
+# bench/report.py's instance matching and real-camera figures, and the cube's truth.
+from report_instances import instance_sequence, instance_summary, match_instances  # noqa: E402
+import report_real_camera  # noqa: E402
 import real_camera_cube  # noqa: E402  bench/real_camera_cube.py
 
 DATA = os.environ.get("AMCR_DATA", os.path.join(HERE, "..", "..", "..", "shared", "data"))
 MPEG7 = os.path.join(DATA, "mpeg7")
-HAVE_DATA = os.path.isfile(os.path.join(MPEG7, "apple-1.png")) and os.path.isdir(ms.PHOTO_DIR)
+HAVE_DATA = os.path.isfile(os.path.join(MPEG7, "apple-1.png")) and os.path.isdir(sequence_suites.PHOTO_DIR)
 
 
 def render_truth(folder, name, suite, index, spec, memory, classes, frames):
     """Renders sequence `index` of `suite` (seed 1, `frames` frames) into folder/name; returns its truth."""
     path = os.path.join(folder, name)
     os.makedirs(path)
-    ms.render_sequence(path, suite, index, spec, memory, classes, MPEG7, frames, 1)
+    sequence_rendering.render_sequence(path, suite, index, spec, memory, classes, MPEG7, frames, 1)
     with open(os.path.join(path, "truth.json")) as f:
         return json.load(f)
 
@@ -50,21 +54,21 @@ def render_truth(folder, name, suite, index, spec, memory, classes, frames):
 class SeedIndex(unittest.TestCase):
     def test_earlier_suites_keep_their_seeds(self):
         # The index of a suite enters every draw of its sequences: a new suite must not move one.
-        self.assertEqual({s: ms.SEED_INDEX[s] for s in ["clutter-only", "mpeg7-70", "paper", "similar", "two-objects",
+        self.assertEqual({s: SEED_INDEX[s] for s in ["clutter-only", "mpeg7-70", "paper", "similar", "two-objects",
                                                          "within-class", "oblique", "real-camera"]},
                          {"clutter-only": 0, "mpeg7-70": 1, "paper": 2, "similar": 3, "two-objects": 4,
                           "within-class": 5, "oblique": 6, "real-camera": 7})
-        self.assertEqual([ms.SEED_INDEX[s] for s in ["memory-growth", "paper-hd", "clutter-only-hd", "copies",
+        self.assertEqual([SEED_INDEX[s] for s in ["memory-growth", "paper-hd", "clutter-only-hd", "copies",
                                                       "real-photos"]], [8, 9, 10, 11, 12])
-        self.assertEqual([ms.SEED_INDEX[s] for s in ["within-class-1330", "within-class-85"]], [13, 14])
-        self.assertEqual(ms.SEED_INDEX["real-camera-cube"], 15)
-        self.assertEqual(ms.SEED_INDEX["faint"], 16)
-        self.assertEqual(len(set(ms.SEED_INDEX.values())), len(ms.SEED_INDEX))
-        self.assertEqual(set(ms.SEED_INDEX), set(ms.SUITES))
+        self.assertEqual([SEED_INDEX[s] for s in ["within-class-1330", "within-class-85"]], [13, 14])
+        self.assertEqual(SEED_INDEX["real-camera-cube"], 15)
+        self.assertEqual(SEED_INDEX["faint"], 16)
+        self.assertEqual(len(set(SEED_INDEX.values())), len(SEED_INDEX))
+        self.assertEqual(set(SEED_INDEX), set(SUITES))
 
     def test_hd_map(self):
         # 640x480 pixel centres: the frame's edges -0.5 and 639.5 / 479.5 land on 159.5, 1119.5 / -0.5, 719.5.
-        corners = ms.HD_FROM_640 @ np.array([[-0.5, 639.5], [-0.5, 479.5], [1.0, 1.0]])
+        corners = sequence_suites.HD_FROM_640 @ np.array([[-0.5, 639.5], [-0.5, 479.5], [1.0, 1.0]])
         np.testing.assert_allclose(corners, [[159.5, 1119.5], [-0.5, 719.5]])
 
 
@@ -72,17 +76,17 @@ class SeedIndex(unittest.TestCase):
 class Suites(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.classes = ms.mpeg7_classes(MPEG7)
+        cls.classes = sequence_memories.mpeg7_classes(MPEG7)
 
     def test_growth_memories_nested_and_hold_the_targets(self):
-        memories = ms.growth_memories(self.classes)
+        memories = sequence_memories.growth_memories(self.classes)
         self.assertEqual([len(memories[n]) for n in (3, 17, 35, 70)], [3, 17, 35, 70])
-        self.assertEqual(memories[17], sorted(ms.paper_classes(self.classes)))
+        self.assertEqual(memories[17], sorted(sequence_memories.paper_classes(self.classes)))
         for small, large in ((3, 17), (17, 35), (35, 70)):
             self.assertTrue(set(memories[small]) <= set(memories[large]), (small, large))
-        self.assertEqual(memories, ms.growth_memories(self.classes))  # fixed, not drawn anew
-        spec = ms.SUITES["memory-growth"]
-        targets = ms.memory_of(spec["memory"], self.classes, MPEG7)
+        self.assertEqual(memories, sequence_memories.growth_memories(self.classes))  # fixed, not drawn anew
+        spec = SUITES["memory-growth"]
+        targets = sequence_memories.memory_of(spec["memory"], self.classes, MPEG7)
         self.assertEqual(sorted(targets), memories[3])
         with tempfile.TemporaryDirectory() as tmp:
             for index in range(3):
@@ -93,11 +97,11 @@ class Suites(unittest.TestCase):
                             self.assertIn(o["label"], memories[n])
 
     def test_faint_frames_are_the_paper_ones_faint_and_defocused(self):
-        memory = ms.memory_of("paper17", self.classes, MPEG7)
+        memory = sequence_memories.memory_of("paper17", self.classes, MPEG7)
         with tempfile.TemporaryDirectory() as tmp:
             truths, frames = {}, {}
             for suite in ("paper", "faint"):
-                truths[suite] = render_truth(tmp, suite, suite, 0, ms.SUITES[suite], memory, self.classes, 3)
+                truths[suite] = render_truth(tmp, suite, suite, 0, SUITES[suite], memory, self.classes, 3)
                 frames[suite] = cv2.imread(os.path.join(tmp, suite, "frames", "frame_0002.png"),
                                            cv2.IMREAD_GRAYSCALE).astype(float)
         sharp, faint = truths["paper"], truths["faint"]
@@ -111,11 +115,11 @@ class Suites(unittest.TestCase):
         self.assertGreater(spread["faint"], 0.15 * spread["paper"])
 
     def test_hd_frames_and_truth_are_the_640_ones_scaled(self):
-        memory = ms.memory_of("paper17", self.classes, MPEG7)
+        memory = sequence_memories.memory_of("paper17", self.classes, MPEG7)
         with tempfile.TemporaryDirectory() as tmp:
             truths, frames = {}, {}
             for suite in ("paper", "paper-hd"):
-                truths[suite] = render_truth(tmp, suite, suite, 0, ms.SUITES[suite], memory, self.classes, 3)
+                truths[suite] = render_truth(tmp, suite, suite, 0, SUITES[suite], memory, self.classes, 3)
                 frames[suite] = cv2.imread(os.path.join(tmp, suite, "frames", "frame_0002.png"), cv2.IMREAD_GRAYSCALE)
         low, high = truths["paper"], truths["paper-hd"]
         self.assertEqual(high["image_size"], [1280, 720])
@@ -135,8 +139,8 @@ class Suites(unittest.TestCase):
         self.assertLess(np.mean(np.abs(back.astype(float) - frames["paper"])), 5.0)
 
     def test_copies_apart_and_where_the_truth_says(self):
-        spec = ms.SUITES["copies"]
-        memory = ms.memory_of(spec["memory"], self.classes, MPEG7)
+        spec = SUITES["copies"]
+        memory = sequence_memories.memory_of(spec["memory"], self.classes, MPEG7)
         with tempfile.TemporaryDirectory() as tmp:
             for index in range(2):
                 path = os.path.join(tmp, "seq_%03d" % index)
@@ -152,7 +156,7 @@ class Suites(unittest.TestCase):
                                       truth["inverted"])
 
     def check_copies(self, grey, mask, poses, inverted):
-        shapes = [cv2.warpAffine(mask, p, (ms.WIDTH, ms.HEIGHT), flags=cv2.INTER_NEAREST) > 127 for p in poses]
+        shapes = [cv2.warpAffine(mask, p, (WIDTH, HEIGHT), flags=cv2.INTER_NEAREST) > 127 for p in poses]
         for i in range(len(shapes)):
             for j in range(i):
                 self.assertFalse(np.any(shapes[i] & shapes[j]), "copies %d and %d overlap" % (j, i))
@@ -171,49 +175,50 @@ class Suites(unittest.TestCase):
 class HeldOut(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.classes = ms.mpeg7_classes(MPEG7)
-        cls.held, cls.five = ms.holdout_instances(cls.classes)
+        cls.classes = sequence_memories.mpeg7_classes(MPEG7)
+        cls.held, cls.five = sequence_memories.holdout_instances(cls.classes)
 
     def written(self, kind):
         """The memory `kind` as main writes it: label -> sorted file names of its sub-directory."""
         with tempfile.TemporaryDirectory() as tmp:
-            ms.write_memory(tmp, ms.memory_of(kind, self.classes, MPEG7))
+            sequence_files.write_memory(tmp, sequence_memories.memory_of(kind, self.classes, MPEG7))
             self.assertEqual([f for f in os.listdir(tmp) if not os.path.isdir(os.path.join(tmp, f))], [])
             return {d: sorted(os.listdir(os.path.join(tmp, d))) for d in os.listdir(tmp)}
 
     def test_held_out_fixed_one_per_class(self):
         self.assertEqual(sorted(self.held), self.classes)
         self.assertTrue(all(1 <= n <= 20 for n in self.held.values()))
-        self.assertEqual((self.held, self.five), ms.holdout_instances(self.classes))  # fixed, not drawn anew
+        # Fixed, not drawn anew.
+        self.assertEqual((self.held, self.five), sequence_memories.holdout_instances(self.classes))
 
     def test_memory_1330_holds_19_per_class_none_held_out(self):
         memory = self.written("all70x19")
         self.assertEqual(sorted(memory), self.classes)
         for cls, files in memory.items():
             self.assertEqual(len(files), 19, cls)
-            self.assertNotIn(ms.instance_name(cls, self.held[cls]) + ".png", files)
+            self.assertNotIn(sequence_memories.instance_name(cls, self.held[cls]) + ".png", files)
             self.assertEqual(set(files), {"%s-%d.png" % (cls, n) for n in range(1, 21) if n != self.held[cls]})
 
     def test_memory_85_holds_5_of_the_paper_classes_none_held_out(self):
         memory = self.written("paper17x5")
-        self.assertEqual(sorted(memory), sorted(ms.paper_classes(self.classes)))
+        self.assertEqual(sorted(memory), sorted(sequence_memories.paper_classes(self.classes)))
         for cls, files in memory.items():
             self.assertEqual(len(files), 5, cls)
-            self.assertNotIn(ms.instance_name(cls, self.held[cls]) + ".png", files)
+            self.assertNotIn(sequence_memories.instance_name(cls, self.held[cls]) + ".png", files)
             self.assertEqual(files, sorted("%s-%d.png" % (cls, n) for n in self.five[cls]))
 
     def test_1330_shows_the_held_out_instance_over_the_within_class_frames(self):
         frames, truths = {}, {}
         with tempfile.TemporaryDirectory() as tmp:
             for suite, kind in (("within-class", "all70"), ("within-class-1330", "all70x19")):
-                memory = ms.memory_of(kind, self.classes, MPEG7)
-                truths[suite] = render_truth(tmp, suite, suite, 1, ms.SUITES[suite], memory, self.classes, 2)
+                memory = sequence_memories.memory_of(kind, self.classes, MPEG7)
+                truths[suite] = render_truth(tmp, suite, suite, 1, SUITES[suite], memory, self.classes, 2)
                 frames[suite] = [cv2.imread(os.path.join(tmp, suite, "frames", "frame_%04d.png" % k),
                                             cv2.IMREAD_GRAYSCALE).astype(int) for k in range(2)]
         old, new = truths["within-class"], truths["within-class-1330"]
         label = new["targets"][0]["label"]
         self.assertEqual(label, old["targets"][0]["label"])  # the same class, the class as label
-        held_file = ms.mpeg7_file(label, self.held[label])
+        held_file = sequence_memories.mpeg7_file(label, self.held[label])
         self.assertEqual(new["targets"][0]["source"], os.path.basename(held_file))
         held = cv2.imread(held_file, cv2.IMREAD_GRAYSCALE)
         self.assertEqual(new["prototype_sizes"], {label: list(held.shape[::-1])})
@@ -224,7 +229,7 @@ class HeldOut(unittest.TestCase):
         for k in range(2):
             [o_old], [o_new] = old["frames"][k]["objects"], new["frames"][k]["objects"]
             self.assertEqual(o_new["label"], label)
-            place = lambda mask, o: cv2.warpAffine(mask, np.asarray(o["prototype_to_image"]), (ms.WIDTH, ms.HEIGHT),
+            place = lambda mask, o: cv2.warpAffine(mask, np.asarray(o["prototype_to_image"]), (WIDTH, HEIGHT),
                                                    flags=cv2.INTER_NEAREST) > 127
             target_new, target_old = place(held, o_new), place(shown, o_old)
             # Elsewhere than the two targets (and the blur's reach around them), the same pixels.
@@ -241,35 +246,36 @@ class HeldOut(unittest.TestCase):
             self.assertGreater(-contrast if new["inverted"] else contrast, 25.0, "frame %d" % k)
 
     def test_85_shows_a_held_out_instance_of_a_paper_class(self):
-        spec = ms.SUITES["within-class-85"]
-        memory = ms.memory_of(spec["memory"], self.classes, MPEG7)
+        spec = SUITES["within-class-85"]
+        memory = sequence_memories.memory_of(spec["memory"], self.classes, MPEG7)
         with tempfile.TemporaryDirectory() as tmp:
             truth = render_truth(tmp, "seq_000", "within-class-85", 0, spec, memory, self.classes, 1)
         [target] = truth["targets"]
         self.assertIn(target["label"], memory)
-        self.assertEqual(target["source"], os.path.basename(ms.mpeg7_file(target["label"], self.held[target["label"]])))
+        held_file = sequence_memories.mpeg7_file(target["label"], self.held[target["label"]])
+        self.assertEqual(target["source"], os.path.basename(held_file))
         self.assertEqual([o["label"] for o in truth["frames"][0]["objects"]], [target["label"]])
 
 
-PHOTO = os.path.join(ms.PHOTO_DIR, ms.PART_PHOTOS[0][0])
+PHOTO = os.path.join(sequence_suites.PHOTO_DIR, sequence_suites.PART_PHOTOS[0][0])
 
 
 @unittest.skipUnless(os.path.isfile(PHOTO), "no %s: install the Debian package opencv-doc" % PHOTO)
 class RealPhotos(unittest.TestCase):
     def test_six_parts_where_the_truth_says(self):
-        prototype, photo, instances = ms.cut_part(PHOTO)
+        prototype, photo, instances = sequence_photos.cut_part(PHOTO)
         self.assertEqual(len(instances), 6)
         self.assertEqual(set(np.unique(prototype)), {0, 255})
         self.assertEqual(prototype[0, 0], 0)  # white shape on black, the centroid at the centre
         self.assertEqual(prototype[prototype.shape[0] // 2, prototype.shape[1] // 2], 255)
         with tempfile.TemporaryDirectory() as tmp:
-            ms.render_photo(tmp, "real-photos", 0, 6, 1)
+            sequence_photos.render_photo(tmp, "real-photos", 0, 6, 1)
             with open(os.path.join(tmp, "truth.json")) as f:
                 truth = json.load(f)
             self.assertTrue(truth["approximate"])
             for k in (0, 5):
                 grey = cv2.imread(os.path.join(tmp, "frames", "frame_%04d.png" % k), cv2.IMREAD_GRAYSCALE)
-                self.assertEqual(grey.shape, (ms.HEIGHT, ms.WIDTH))
+                self.assertEqual(grey.shape, (HEIGHT, WIDTH))
                 objects = truth["frames"][k]["objects"]
                 self.assertEqual(len(objects), 6)
                 threshold, _ = cv2.threshold(grey, 0, 255, cv2.THRESH_BINARY | cv2.THRESH_OTSU)
@@ -278,7 +284,7 @@ class RealPhotos(unittest.TestCase):
                     self.assertTrue(o["approximate"])
                     self.assertLess(grey[int(round(y)), int(round(x))], threshold)  # on a dark part
                     # The approximate affine lays the prototype on the part: mostly dark pixels.
-                    shape = cv2.warpAffine(prototype, np.asarray(o["prototype_to_image"]), (ms.WIDTH, ms.HEIGHT),
+                    shape = cv2.warpAffine(prototype, np.asarray(o["prototype_to_image"]), (WIDTH, HEIGHT),
                                            flags=cv2.INTER_NEAREST) > 127
                     self.assertGreater(np.mean(grey[shape] < threshold), 0.9)
                 distances = np.linalg.norm(centres[:, None] - centres[None], axis=2) + 1e9 * np.eye(6)
@@ -290,7 +296,7 @@ class RealPhotos(unittest.TestCase):
 class RealCameraCube(unittest.TestCase):
     def test_truth_like_real_camera_and_a_turned_report_scores(self):
         with tempfile.TemporaryDirectory() as tmp:
-            ms.render_real(tmp, "real-camera-cube", 0, 3, 1)
+            sequence_real_camera.render_real(tmp, "real-camera-cube", 0, 3, 1)
             with open(os.path.join(tmp, "truth.json")) as f:
                 truth = json.load(f)
             self.assertEqual(len(os.listdir(os.path.join(tmp, "frames"))), 3)
@@ -307,7 +313,7 @@ class RealCameraCube(unittest.TestCase):
         a = np.asarray(frame["prototype_to_image"])
         turned = np.hstack([a[:, :2] @ turn, (a[:, :2] @ (c - turn @ c) + a[:, 2]).reshape(2, 1)])
         rows = {0: {"objects": [{"label": "cube-face", "prototype_to_image": turned.tolist()}], "time_ms": 1.0}}
-        m = report.real_camera_sequence(truth, rows)
+        m = report_real_camera.real_camera_sequence(truth, rows)
         self.assertEqual(m["right_share"], 1.0)
         self.assertLess(m["corner_error_median"], 1.0)
 
@@ -323,21 +329,21 @@ class InstanceMatching(unittest.TestCase):
 
     def test_one_of_two_copies_found_is_half(self):
         truth = [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]
-        found = report.match_instances(truth, [copy_at("cup", 305, 104)], self.sizes)
+        found = match_instances(truth, [copy_at("cup", 305, 104)], self.sizes)
         self.assertEqual(found, [None, 0])
         # The radius: max(10 px, 0.3 x 100 px) = 30 px; 31 px away finds nothing.
-        self.assertEqual(report.match_instances(truth, [copy_at("cup", 331, 100)], self.sizes), [None, None])
+        self.assertEqual(match_instances(truth, [copy_at("cup", 331, 100)], self.sizes), [None, None])
 
     def test_a_wrong_label_does_not_count(self):
         truth = [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]
-        self.assertEqual(report.match_instances(truth, [copy_at("dog", 100, 100)], self.sizes), [None, None])
+        self.assertEqual(match_instances(truth, [copy_at("dog", 100, 100)], self.sizes), [None, None])
 
     def test_one_report_finds_one_instance(self):
         truth = [copy_at("cup", 100, 100), copy_at("cup", 120, 100)]  # both within 30 px of the report
-        found = report.match_instances(truth, [copy_at("cup", 110, 100)], self.sizes)
+        found = match_instances(truth, [copy_at("cup", 110, 100)], self.sizes)
         self.assertEqual(sorted(found, key=str), [0, None])
         # Two reports: each instance its own, even when the first report is nearer the second instance.
-        found = report.match_instances(truth, [copy_at("cup", 118, 100), copy_at("cup", 135, 100)], self.sizes)
+        found = match_instances(truth, [copy_at("cup", 118, 100), copy_at("cup", 135, 100)], self.sizes)
         self.assertEqual(found, [0, 1])
 
     def test_a_shape_reported_turned_is_at_its_centroid(self):
@@ -346,32 +352,32 @@ class InstanceMatching(unittest.TestCase):
         # (141, 100), 59 px from where the truth has it, the centroid in place.
         truth = [copy_at("cup", 200, 100)]
         turned = {"label": "cup", "prototype_to_image": [[-1.0, 0.0, 170.5 + 20], [0.0, -1.0, 100 + 24.5]]}
-        self.assertEqual(report.match_instances(truth, [turned], self.sizes), [None])
-        self.assertEqual(report.match_instances(truth, [turned], self.sizes, {"cup": (20.0, 24.5)}), [0])
+        self.assertEqual(match_instances(truth, [turned], self.sizes), [None])
+        self.assertEqual(match_instances(truth, [turned], self.sizes, {"cup": (20.0, 24.5)}), [0])
 
     def test_sequence_figures_and_track_ids(self):
         truth = {"frames": [{"frame": k, "objects": [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]}
                             for k in range(4)]}
         both = [copy_at("cup", 100, 100), copy_at("cup", 300, 100)]
         rows = {0: {"objects": both[:1]}, 1: {"objects": both}, 2: {"objects": both}, 3: {"objects": both}}
-        s = report.instance_sequence(truth, rows, self.sizes)
+        s = instance_sequence(truth, rows, self.sizes)
         self.assertEqual(s["shares"], {1: 0.5, 2: 1.0, 3: 1.0, 4: 1.0})
         self.assertEqual(s["at"], 4)  # 60, or the last frame when shorter
         self.assertTrue(s["all_at"] and s["held"])
-        m = report.instance_summary([s])
+        m = instance_summary([s])
         self.assertAlmostEqual(m["found_share"], 3.5 / 4)
         self.assertNotIn("tracks_per_instance", m)  # no track ids reported: no fragmentation figure
         tracked = [dict(o, track_id=t, state="confirmed") for o, t in zip(both, (7, 8))]
         rows = {k: {"objects": tracked} for k in range(4)}
         rows[2] = {"objects": [dict(tracked[0], track_id=9), tracked[1]]}  # copy 0 lost and found again
-        m = report.instance_summary([report.instance_sequence(truth, rows, self.sizes)])
+        m = instance_summary([instance_sequence(truth, rows, self.sizes)])
         self.assertAlmostEqual(m["tracks_per_instance"], 1.5)
         self.assertEqual(m["states"], {"confirmed": 1.0})
 
     def test_held_needs_ninety_percent_after_frame_60(self):
         truth = {"frames": [{"frame": k, "objects": [copy_at("cup", 100, 100)]} for k in range(80)]}
         rows = {k: {"objects": [copy_at("cup", 100, 100)] if k < 60 or k % 5 else []} for k in range(80)}
-        s = report.instance_sequence(truth, rows, self.sizes)  # found at frame 60, in 16 of the 20 after it
+        s = instance_sequence(truth, rows, self.sizes)  # found at frame 60, in 16 of the 20 after it
         self.assertTrue(s["all_at"])
         self.assertFalse(s["held"])
 

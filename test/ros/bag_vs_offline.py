@@ -115,7 +115,7 @@ class BagVsOffline(unittest.TestCase):
                     flat = [v for row in want[name] for v in row]
                     for a, b in zip(getattr(got, name), flat):
                         self.assertAlmostEqual(a, b, delta=AFFINE_TOL, msg="%s %s" % (where, name))
-                # The perspective fit and the view (issue 13).
+                # The perspective fit and the view (anisotropy, viewing angle).
                 self.assertEqual(got.homography_valid, want["homography_valid"], where)
                 flat = [v for row in want["homography"] for v in row]
                 self.assertEqual(len(got.homography), len(flat), where)

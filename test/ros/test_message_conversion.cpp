@@ -1,6 +1,6 @@
 // toMsg of one recognized object (src/ros/message_conversion.cpp): every
 // field of amcr/Recognition as the core has it, the homography row-major and
-// the view (issue 13).
+// the view (anisotropy and viewing angle).
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
@@ -87,7 +87,7 @@ TEST(MessageConversion, StatesAndLostObjects)
   EXPECT_EQ(amcr_ros::stateName(200), "unknown");
 }
 
-// The label table (issue 17): the distinct labels, and a row per instance.
+// The label table: the distinct labels, and a row per instance (a label may have several).
 TEST(MessageConversion, LabelTableListsLabelsWithTheirInstances)
 {
   amcr::Params params;
