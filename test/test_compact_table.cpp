@@ -43,7 +43,7 @@ TEST(CompactTable, StrideDividesTheNodesAndPixelsOfABlockShareOneScan)
 // The error a compact table's lookups make against the exact table, over
 // every interior pixel (where M-particles are seeded) and every direction
 // of the five drawn shapes at the default size (2.0 M lookups). Stated bound
-// (README, "Compact tables"; measured 68.5%, 91.4%, 1.50 px, 0.20%), at
+// (docs/configuration.md, "Compact tables"; measured 68.5%, 91.4%, 1.50 px, 0.20%), at
 // stride 2: 65% of the lookups within 0.5 px and 88% within 1 px of the
 // exact distance, a mean error below 1.8 px, and "edge" against "no edge"
 // disagreeing in under 0.5%. At stride 4 (measured 71.4%, 91.0%, 2.84 px,

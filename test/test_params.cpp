@@ -47,7 +47,7 @@ TEST(Params, DefaultsAreValid)
   EXPECT_NO_THROW(amcr::Params{}.validate());
   // The paper's settings that the defaults keep. (num_v_particles is 60, not
   // the paper's 30, and V-particles are resampled every 3 iterations, not 10:
-  // both found the shapes of the end-to-end and tracking tests sooner, see README.)
+  // both found the shapes of the end-to-end and tracking tests sooner, see docs/how-it-works.md.)
   const amcr::Params p;
   EXPECT_EQ(p.m_particles_per_prototype, 60);
   EXPECT_DOUBLE_EQ(p.p_outlier, 0.1);

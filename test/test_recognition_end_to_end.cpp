@@ -176,7 +176,7 @@ INSTANTIATE_TEST_SUITE_P(
 // half, start oblique); the star at anisotropy 2.5 (scene 203, 140 deg) in
 // none of 4 runs without the index either: its thin
 // points, squashed, leave few rays that meet the same edges in the image and
-// in the table (README, "Oblique views").
+// in the table (docs/how-it-works.md, "Oblique views: affine-corrected scans").
 Target oblique(ShapeId shape, cv::Point2d centre, double rotation_deg, std::uint64_t clutter_seed)
 {
   const double s = 0.85, stretch = std::sqrt(2.5);

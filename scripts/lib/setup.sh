@@ -13,8 +13,8 @@ AMCR_REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd -P)"
 AMCR_WS="$(realpath -m "${AMCR_WS:-$AMCR_REPO/.build/ws}")"
 AMCR_JOBS="${AMCR_JOBS:-2}"
 
-# Debian packages: the recipe of docs/ros-on-debian.md plus what this package and its later
-# issues use. opencv-doc provides the silhouettes and photos of the demo sequence. The benchmark's
+# Debian packages: Debian's ROS 1 build (catkin, roscpp, nodelet, image_transport, cv_bridge, ...)
+# plus the libraries this package uses. opencv-doc provides the silhouettes and photos of the demo sequence. The benchmark's
 # peers and their tests use OpenCV's rgbd (contrib: LINE-2D) and shape (shape contexts) modules;
 # libopencv-dev depends on both, named here because the tests need them.
 AMCR_PACKAGES=(
@@ -34,7 +34,7 @@ AMCR_PACKAGES=(
 # only when apt knows it.
 AMCR_FUZZ_PACKAGES=(clang cmake)
 
-# Debian's python3, never a pyenv/venv one (ros-on-debian.md, gotcha 1).
+# Debian's python3, never a pyenv/venv one: Debian's ROS Python modules are installed for it alone.
 AMCR_CMAKE_ARGS=(-DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3)
 
 AMCR_STAGE=""
@@ -101,7 +101,8 @@ amcr_install_fuzz_tools() {
   rm -rf "$probe"
 }
 
-# The environment every catkin and ROS command here runs in (ros-on-debian.md, "Build and test").
+# The environment every catkin and ROS command here runs in: Debian's /usr/bin first on PATH (its
+# python3 is the one with the ROS modules), a master on this machine, ROS_HOME in the workspace.
 amcr_environment() {
   export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
   unset PYTHONHOME VIRTUAL_ENV PYENV_VERSION ROS_HOSTNAME

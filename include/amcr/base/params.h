@@ -52,8 +52,9 @@ struct Params
   int index_candidates = 64; ///< places a V-particle's query returns [1, 1000]
   /// The frontal candidates from the radial-profile index (profile_index.h):
   /// the best aligned 8 of the index_candidates places nearest in profile
-  /// key; false (the default: more false reports, README "Proposals from
-  /// the radial profile"): from the 8-ray index (proposal_index.h).
+  /// key; false (the default: more false reports, docs/how-it-works.md,
+  /// "Proposals from the radial profile"): from the 8-ray index
+  /// (proposal_index.h).
   bool profile_index = false;
   /// Most entries the index holds [0, 1e9]; a memory that would need more
   /// is indexed at a larger stride (ProposalIndex); 0 = no limit.
@@ -63,7 +64,7 @@ struct Params
   int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]
   /// Spacing of the lookup tables' nodes, table px [0, 4]: 1 = a scan at
   /// every pixel (exact lookups); s = one per s x s block, s^2 times less
-  /// memory and build time (Prototype(); README, "Compact tables"); 0 = the
+  /// memory and build time (Prototype(); docs/configuration.md, "Compact tables"); 0 = the
   /// smallest stride whose tables fit table_budget_mb for the memory's size
   /// (table_stride_choice.h).
   int table_stride = 0;

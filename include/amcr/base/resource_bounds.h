@@ -1,6 +1,6 @@
 // Upper bounds on the work and memory a recognizer may be asked for. Each is
 // checked up front, before anything is allocated, and refused with an error
-// that gives the figure asked for and the bound (README, "Configuration").
+// that gives the figure asked for and the bound (docs/configuration.md, "Resource bounds").
 //
 // The documented use lies well inside: 60 V x 60 M x 70 prototypes is
 // 252,000 M-particles (32 times below the bound), a 1280x720 frame is

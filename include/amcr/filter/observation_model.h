@@ -55,7 +55,7 @@ public:
   /// the affine, starting from each M-particle's view shape turned onto its
   /// heading, with affine_refits re-estimates of A (default none: each one
   /// lets every hypothesis fit itself to what it sees, and the likelihood
-  /// tells them apart less; README, "Oblique views").
+  /// tells them apart less; docs/how-it-works.md, "Oblique views: affine-corrected scans").
   /// The M-particles go through in blocks (observation_model_lanes.cpp),
   /// with the same output as measureReference: bitwise on x86-64 with GCC,
   /// within float rounding elsewhere (test_update_loop.cpp states the
