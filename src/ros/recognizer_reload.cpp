@@ -143,7 +143,7 @@ amcr::LoadPrototypes::Response RecognizerRos::loadPrototypes(const std::string& 
   try
   {
     std::lock_guard<std::mutex> rebuilding(rebuild_mutex_);
-    const amcr::SingleThreadScope beside_the_images;  // the recognizer keeps OpenCV's threads
+    const amcr::SingleThreadScope beside_the_images;  // at this thread's priority, off the images' workers
     PreparedSwap prepared = prepareLoad(directory);
     response.message = commit(prepared);
     response.success = response.message.empty();

@@ -178,8 +178,9 @@ void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers
         response = removePrototype(request.label);
         return true;
       });
-  // OpenCV's workers are started here, at the host's priority: started later by the rebuild thread, they
-  // would inherit its lower one, and the images' loops run on them.
+  // amcr's workers (the images' parallelFor loops) and OpenCV's (its loops within resize, blur, flow...)
+  // are started here, at the host's priority: started later by the rebuild thread, they would inherit its
+  // lower one.
   amcr::startWorkerThreads();
   edit_queue_.addCallback(boost::make_shared<RunOnce>(lowerThisThreadsPriority));
   edit_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &edit_queue_);

@@ -16,7 +16,9 @@
 // served on a thread of their own, so that the host's callback queue (a
 // nodelet's runs one callback at a time) goes on delivering images meanwhile;
 // that thread runs at a lower CPU priority and builds on itself alone
-// (amcr::SingleThreadScope), so the images keep OpenCV's threads and go first.
+// (amcr::SingleThreadScope): its work stays at that priority instead of going
+// to amcr's workers, which run the images' loops at the host's, so the images
+// go first.
 //
 // Advertises (private): ~prototypes (amcr/PrototypeTable, latched, with its version), ~reset
 //                       (std_srvs/Trigger), ~load_prototypes (amcr/LoadPrototypes), ~teach

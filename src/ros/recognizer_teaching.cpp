@@ -55,7 +55,7 @@ amcr::TeachPrototype::Response RecognizerRos::teach(const amcr::TeachPrototype::
   try
   {
     std::lock_guard<std::mutex> rebuilding(rebuild_mutex_);
-    const amcr::SingleThreadScope beside_the_images;  // the recognizer keeps OpenCV's threads
+    const amcr::SingleThreadScope beside_the_images;  // at this thread's priority, off the images' workers
     response.message = teachShape(request, response);
   }
   catch (const std::exception& e)

@@ -28,7 +28,7 @@ public:
   /// sorted by label, then instance. Unreadable files, images with no
   /// shape, empty label directories and labels taken twice are skipped with
   /// a warning naming the file. The tables are built on
-  /// OpenCV's threads (cv::parallel_for_), or read from the table cache
+  /// parallelFor's threads (parallel_for.h), or read from the table cache
   /// params.table_cache_dir names (table_cache.h); a cache file that is
   /// refused, or a cache that cannot be used, is a warning too. The memory
   /// is the same whatever the thread count and whatever came from the
