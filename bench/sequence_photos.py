@@ -110,14 +110,17 @@ def camera_motion(rng, instances, proto_size, photo_size, frames):
     fail("no camera motion keeps the parts in view")
 
 
-def render_photo(path, suite, index, frames, seed):
+def render_photo(path, suite, index, frames, seed, key=None, noise_scale=1.0):
     """A `real-photos` sequence: the photo of PART_PHOTOS[index % len] under a camera motion of its
-    own (camera_motion), bilinear, with noise (sigma 1.5-3); truth: every instance of the part."""
-    rng = np.random.default_rng([seed, SEED_INDEX[suite], index])
+    own (camera_motion), bilinear, with noise (sigma 1.5-3); truth: every instance of the part.
+    `key` (a list of integers) replaces (seed, SEED_INDEX[suite]) in the sequence's generator for a
+    construction drawn elsewhere (bench/sampled_benchmark); `noise_scale` multiplies the drawn noise
+    sigma (0: no noise added at all)."""
+    rng = np.random.default_rng(([seed, SEED_INDEX[suite]] if key is None else list(key)) + [index])
     name, label = PART_PHOTOS[index % len(PART_PHOTOS)]
     prototype, grey, instances = cut_part(os.path.join(PHOTO_DIR, name))
     maps = camera_motion(rng, instances, prototype.shape[::-1], grey.shape[::-1], frames)
-    noise = rng.uniform(1.5, 3.0)
+    noise = rng.uniform(1.5, 3.0) * noise_scale
     photo = grey.astype(np.float32)
     # How alike the part is to itself turned by half a turn (about the prototype's centre, its centroid).
     turned = (prototype > 127) & (prototype[::-1, ::-1] > 127)
@@ -130,7 +133,8 @@ def render_photo(path, suite, index, frames, seed):
     for k, camera in enumerate(maps):
         frame = cv2.warpAffine(photo, camera, (WIDTH, HEIGHT), flags=cv2.INTER_LINEAR,
                                borderMode=cv2.BORDER_REPLICATE)
-        frame += rng.normal(0.0, noise, frame.shape).astype(np.float32)
+        if noise > 0:
+            frame += rng.normal(0.0, noise, frame.shape).astype(np.float32)
         cv2.imwrite(os.path.join(frame_dir, "frame_%04d.png" % k), np.clip(np.rint(frame), 0, 255).astype(np.uint8))
         objects = []
         for centroid, matrix in instances:

@@ -61,9 +61,15 @@ def random_blob(rng):
     return mask
 
 
-def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, seed):
+def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, seed, key=None, noise_scale=1.0):
+    """Sequence `index` of `suite` into `path`. Every generator of the sequence is keyed by (seed, the
+    suite's SEED_INDEX; `like`'s for the draws it shares with `like`) and the index; `key` (a list of
+    integers) replaces that pair for a construction drawn elsewhere (bench/sampled_benchmark).
+    `noise_scale` multiplies the drawn noise sigma (1: as drawn)."""
     seed_suite = spec.get("like", suite)
-    rng = np.random.default_rng([seed, SEED_INDEX[seed_suite], index])
+    like_key = [seed, SEED_INDEX[seed_suite]] if key is None else list(key)
+    own_key = [seed, SEED_INDEX[suite]] if key is None else list(key)
+    rng = np.random.default_rng(like_key + [index])
     labels = sorted(memory)
     inverted = bool(rng.random() < 0.3)
 
@@ -77,7 +83,7 @@ def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, se
         shown = [(label, memory[label])] * int(rng.integers(spec["copies"][0], spec["copies"][1] + 1))
     else:
         # One fixed order of the memory per suite: a suite covers its classes evenly.
-        order = list(np.random.default_rng([seed, 7919, SEED_INDEX[seed_suite]]).permutation(labels))
+        order = list(np.random.default_rng(like_key[:1] + [7919] + like_key[1:]).permutation(labels))
         label = order[index % len(order)]
         source = memory[label]
         if spec["show"] == "other-instance":
@@ -114,7 +120,7 @@ def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, se
         for i, (label, source) in enumerate(shown):
             mask = read_grey(source)
             # The squash has a generator of its own: the other draws stay those of `like`.
-            squash_rng = np.random.default_rng([seed, SEED_INDEX[suite], index, 104729])
+            squash_rng = np.random.default_rng(own_key + [index, 104729])
             movers.append((label, mask, ink(), Mover(rng, mask.shape[::-1], target_box(rng, len(shown), i),
                                                      spec.get("oblique"), squash_rng)))
     target_centres = [np.array([(m.box[0] + m.box[2]) / 2, (m.box[1] + m.box[3]) / 2]) for *_, m in movers]
@@ -145,7 +151,7 @@ def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, se
     ramp = ((xs - WIDTH / 2) * math.cos(g_angle) + (ys - HEIGHT / 2) * math.sin(g_angle)) / (WIDTH / 2)
     light = 1.0 + g_strength * ramp
     blur = rng.uniform(0.0, 1.2)
-    noise = rng.uniform(2.0, 8.0)
+    noise = rng.uniform(2.0, 8.0) * noise_scale
     contrast, defocus = spec.get("faint", (1.0, 0.0))
     blur = math.hypot(blur, defocus)  # Gaussians compose: the drawn blur, then the defocus
     hd = spec.get("hd", False)
