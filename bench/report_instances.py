@@ -99,9 +99,11 @@ def instance_sequence(truth, rows, sizes, centres=None):
             "tracks": tracks, "states": states, "at": at}
 
 
-def instance_metrics(out, suite, methods):
-    """method -> instance-level metrics over a suite's sequences (instance_sequence)."""
+def instance_metrics(out, suite, methods, res_dir=None):
+    """method -> instance-level metrics over a suite's sequences (instance_sequence); the results in
+    `res_dir` (default <out>/results/<suite>)."""
     seq_dir = os.path.join(out, "sequences", suite)
+    res_dir = res_dir or os.path.join(out, "results", suite)
     sizes, centres = {}, {}
     for p in glob.glob(os.path.join(seq_dir, "prototypes", "*.png")):
         image = cv2.imread(p, cv2.IMREAD_GRAYSCALE)
@@ -113,7 +115,7 @@ def instance_metrics(out, suite, methods):
     for method in methods:
         per_seq = []
         for path in sorted(glob.glob(os.path.join(seq_dir, "seq_*", "truth.json"))):
-            result = os.path.join(out, "results", suite, "%s.%s.jsonl" % (os.path.basename(os.path.dirname(path)), method))
+            result = os.path.join(res_dir, "%s.%s.jsonl" % (os.path.basename(os.path.dirname(path)), method))
             if os.path.exists(result):
                 with open(path) as f:
                     per_seq.append(instance_sequence(json.load(f), read_jsonl(result), sizes, centres))

@@ -78,15 +78,18 @@ def real_camera_sequence(truth, rows):
             "time_mean_ms": mean([rows[k]["time_ms"] for k in rows])}
 
 
-def real_camera_metrics(out, suite, methods):
+def real_camera_metrics(out, suite, methods, res_dir=None):
+    """method -> sequence -> real_camera_sequence's figures; the results in `res_dir` (default
+    <out>/results/<suite>)."""
     seq_dir = os.path.join(out, "sequences", suite)
+    res_dir = res_dir or os.path.join(out, "results", suite)
     metrics = {}
     for path in sorted(glob.glob(os.path.join(seq_dir, "seq_*", "truth.json"))):
         name = os.path.basename(os.path.dirname(path))
         with open(path) as f:
             truth = json.load(f)
         for method in methods:
-            result = os.path.join(out, "results", suite, "%s.%s.jsonl" % (name, method))
+            result = os.path.join(res_dir, "%s.%s.jsonl" % (name, method))
             if os.path.exists(result):
                 m = real_camera_sequence(truth, read_jsonl(result))
                 m["source"] = truth.get("source", name)
