@@ -7,6 +7,7 @@ bench/make_sequences, and records the draw in draw.json."""
 
 import json
 import os
+import sys
 import zlib
 
 import cv2
@@ -14,7 +15,7 @@ import numpy as np
 
 import printed_target
 import real_camera
-from sequence_files import fail, write_memory
+from sequence_files import write_memory
 from sequence_memories import mpeg7_file
 from sequence_photos import cut_part, render_photo
 from sequence_real_camera import real_truth, render_real
@@ -45,6 +46,11 @@ SAMPLED_SUITES = {
 }
 SPREAD = 0.05  # the drawn target's aspect, hole sizes and hole places: each within +-5% of the measured
 SQUARE_CHANCE = 0.25  # a target within SPREAD of square is drawn as a plain square (aspect 1) this often
+
+
+def fail(message):
+    print("sampled_benchmark: " + message, file=sys.stderr)
+    sys.exit(2)
 
 
 def draw_key(seed, suite, k):
