@@ -33,8 +33,10 @@ public:
   bool ready() const { return flow_.ready(); }
 
   /// Moves the tracks by the flow from the previous frame and returns where
-  /// each V-particle of `v` goes (one move per V-particle, in index order);
-  /// `image_size` bounds the moves with a track. Call when ready().
+  /// each V-particle of `v` goes (one move per V-particle, in index order):
+  /// with the track it lies on, else with its own flow, else (an untextured
+  /// place) as its nearest neighbours whose flow succeeded, else lost;
+  /// `image_size` bounds the moves. Call when ready().
   std::vector<VParticleMove> follow(const std::vector<VParticle>& v, const cv::Size& image_size);
 
   /// Sets the objects' track ids and states, and appends the tracks that

@@ -14,6 +14,9 @@ namespace
 constexpr std::size_t kOutlineFlowPoints = 32;  // outline points whose flow gives a track's motion
 constexpr double kMinTrackInlierShare = 0.4;    // of those, the share that must agree on one motion
 constexpr int kMinTrackInliers = 6;             // and at least this many: a similarity has 4 degrees of freedom
+// A V-particle whose own flow fails moves as the nearest this many whose
+// flow succeeded (the median of their displacements).
+constexpr std::size_t kNeighbourFlows = 5;
 
 /// Up to `count` points evenly spaced along `outline`.
 std::vector<cv::Point2f> sampleOutline(const std::vector<cv::Point2d>& outline, std::size_t count)
@@ -54,6 +57,52 @@ VParticleMove moveWithTrack(const VParticle& v, const Affine& m, const cv::Size&
   move.theta = static_cast<float>(wrapAngle(v.theta + std::atan2(m(1, 0), m(0, 0))));
   return move;
 }
+
+/// The moves of the free V-particles whose own flow failed. A point of an
+/// untextured surface (the inside of a flat part, a wall) has no flow of its
+/// own: Lucas-Kanade's window sees no gradient, and in a clean image no
+/// noise either. Such a V-particle moves as its nearest neighbours whose
+/// flow succeeded (the median of their displacements) instead of being
+/// seeded afresh every frame, which kept it from ever converging. Without
+/// kNeighbourFlows successful flows in the frame it stays lost.
+void moveWithNeighbours(const std::vector<cv::Point2f>& from, const std::vector<FlowVector>& flow,
+                        const cv::Size& image_size, std::vector<VParticleMove>& moves, const std::vector<int>& index)
+{
+  std::vector<std::size_t> ok;
+  for (std::size_t i = 0; i < flow.size(); ++i)
+    if (flow[i].ok)
+      ok.push_back(i);
+  if (ok.size() < kNeighbourFlows)
+    return;
+  std::vector<std::pair<float, std::size_t>> by_distance(ok.size());
+  std::vector<float> dx(kNeighbourFlows), dy(kNeighbourFlows);
+  for (std::size_t i = 0; i < flow.size(); ++i)
+  {
+    if (flow[i].ok)
+      continue;
+    for (std::size_t k = 0; k < ok.size(); ++k)
+    {
+      const cv::Point2f d = from[ok[k]] - from[i];
+      by_distance[k] = {d.x * d.x + d.y * d.y, ok[k]};
+    }
+    std::partial_sort(by_distance.begin(), by_distance.begin() + kNeighbourFlows, by_distance.end());
+    for (std::size_t k = 0; k < kNeighbourFlows; ++k)
+    {
+      const std::size_t j = by_distance[k].second;
+      dx[k] = flow[j].to.x - from[j].x;
+      dy[k] = flow[j].to.y - from[j].y;
+    }
+    std::nth_element(dx.begin(), dx.begin() + kNeighbourFlows / 2, dx.end());
+    std::nth_element(dy.begin(), dy.begin() + kNeighbourFlows / 2, dy.end());
+    const float x = from[i].x + dx[kNeighbourFlows / 2], y = from[i].y + dy[kNeighbourFlows / 2];
+    if (x < 0.f || y < 0.f || x > image_size.width - 1.f || y > image_size.height - 1.f)
+      continue;
+    VParticleMove& move = moves[index[i]];
+    move.kind = VParticleMove::Kind::kWithFlow;
+    move.x = x;
+    move.y = y;
+  }
+}
 }  // namespace
 
 FlowTracker::FlowTracker(const Params& params)
@@ -84,7 +133,8 @@ std::vector<VParticleMove> FlowTracker::follow(const std::vector<VParticle>& v, 
 
   // Each V-particle: with the motion of the track it lies on, else with the
   // Lucas-Kanade flow at its own position, which runs only for the
-  // V-particles not on a tracked object; one whose flow fails is lost.
+  // V-particles not on a tracked object; one whose flow fails moves as its
+  // neighbours do (moveWithNeighbours) or is lost.
   std::vector<int> track_of(v.size(), -1);
   std::vector<cv::Point2f> free_points;
   std::vector<std::size_t> free_index(v.size(), 0);
@@ -110,6 +160,11 @@ std::vector<VParticleMove> FlowTracker::follow(const std::vector<VParticle>& v, 
       moves[i].y = flow[free_index[i]].to.y;
     }
   }
+  std::vector<int> free_v(free_points.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (track_of[i] < 0)
+      free_v[free_index[i]] = static_cast<int>(i);
+  moveWithNeighbours(free_points, flow, image_size, moves, free_v);
   for (std::size_t k = 0; k < tracks.size(); ++k)
     if (motions[k].moved)
       tracks_.move(k, motions[k].motion);
