@@ -65,6 +65,15 @@ cv::Mat drawRandomSilhouette(std::uint64_t seed);
 /// look-alike of the oval that follows its outline within `wave` px.
 std::vector<cv::Point2d> wavyOval(cv::Point2d centre, double a, double b, double wave);
 
+/// An apple as a prototype image (kPrototypeImageSize square, 255 on 0): a
+/// round body of radius kAppleRadius about kAppleCentre and, with `stem`, a
+/// stem of 8 x 40 px rising from its top (about 14 % of the outline, as
+/// MPEG-7's apples); without it, the disc an apple's body is.
+cv::Mat drawApple(bool stem);
+const cv::Point2d kAppleCentre(100, 112);
+constexpr double kAppleRadius = 60.0;
+const cv::Point2d kAppleStemTip(100, 20);  ///< the middle of the stem's top
+
 /// A bird in profile (prototype-image px), head to the right; with `crest`,
 /// a crest of three more vertices rises from the top of its head to
 /// kCrestTip: two look-alikes that differ in one part only.

@@ -154,6 +154,14 @@ std::vector<cv::Point2d> wavyOval(cv::Point2d centre, double a, double b, double
   return out;
 }
 
+cv::Mat drawApple(bool stem)
+{
+  cv::Mat image = drawSilhouette(wavyOval(kAppleCentre, kAppleRadius, kAppleRadius, 0.0));
+  if (stem)
+    fillPolygon(image, {{96, 20}, {104, 20}, {104, 60}, {96, 60}}, 255.0);
+  return image;
+}
+
 cv::Mat drawRandomSilhouette(std::uint64_t seed)
 {
   std::mt19937_64 gen(seed);

@@ -153,6 +153,16 @@ struct Params
   /// of its outline's box) [0, 0.1]: the smaller of the two applies, never
   /// less than 1 px; 0 = verify_tolerance at every size (outline_fit.h).
   double verify_relative_tolerance = 0.008;
+  /// Share of the outline points that tell the prototype from its generic
+  /// rivals (an ellipse, its convex hull, its rectangle, a pair of lines)
+  /// that must lie on image edges for a report [0, 1]; 0 = no such check
+  /// (generic_rivals.h).
+  double rival_part_support = 0.5;
+  /// How far an inner part of a prototype's outline (a hole's outline) may
+  /// move and scale on its own before the score counts it, as a share of the
+  /// object's size [0, 0.2]: the error of a prototype drawn from a measured
+  /// target; 0 = the whole outline moves as one (outline_parts.h).
+  double part_shift = 0.05;
   double min_object_size = 64.0;      ///< smallest object reported: longer side of its outline's box, input px [0, 4000]
 
   // Objects: life cycle and attention (track_registry.h).

@@ -41,7 +41,7 @@ Homography refineHomographyOnEdges(const Prototype& prototype, const RadialScann
 
 /// outlineSupport (outline_fit.h) of the outline mapped by a homography.
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,
-                      double tolerance);
+                      double tolerance, double part_shift = 0.0);
 
 /// How far the mapped outline lies from its edges: the mean over all outline
 /// points of the distance, px, to the nearest edge of the majority polarity

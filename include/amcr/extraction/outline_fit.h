@@ -21,8 +21,11 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
 /// Share, in [0, 1], of the outline points that have an image edge within
 /// `tolerance` px along their normal, with the edge polarity the majority of
 /// the outline shows. Points mapped outside the image count as missing.
+/// With `part_shift` > 0 the inner parts of the outline (its holes') are
+/// first fitted on their edges each on its own, by up to that share of the
+/// object's size (outline_parts.h).
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
-                      double tolerance);
+                      double tolerance, double part_shift = 0.0);
 
 /// The tolerance of the score for an object whose outline is `object_size`
 /// px long (outlineSize): `relative` of that size, never above `tolerance`

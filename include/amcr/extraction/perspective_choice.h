@@ -14,6 +14,7 @@ namespace amcr
 struct PerspectiveRule
 {
   double tolerance = 2.0;          ///< px: outline support tolerance, as in the object's score
+  double part_shift = 0.0;         ///< the score's inner parts move on their own by this share of the size (outline_parts.h)
   double residual_cap = 3.0;       ///< px: outlineResidual's cap
   double min_affine_residual = 0.4;   ///< px: an affine this close to its edges is kept untried
   double residual_ratio = 0.7;     ///< the homography's residual must be at most this share of the affine's

@@ -52,7 +52,7 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
     return false;
   candidate.score_tolerance = verifyTolerance(size, in.params.verify_tolerance, in.params.verify_relative_tolerance);
   object.score = use_homography ? perspective->support
-                                : outlineSupport(p, in.scanner, table_to_image, candidate.score_tolerance);
+                                : outlineSupport(p, in.scanner, table_to_image, candidate.score_tolerance, in.params.part_shift);
   object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
   object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
   object.homography_valid = use_homography;
@@ -77,6 +77,36 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   return true;
 }
 
+/// A prototype whose body is round (an apple) may be fitted turned: the
+/// body on its edges, the stem, which the refinement took for clutter, off
+/// them. When the candidate could be reported but its distinguishing part
+/// is not on edges, the pose turned about the body's centre that puts it
+/// there best is refined and taken instead, if that part then verifies
+/// and the whole could be reported.
+void turnRoundShape(const ExtractionInput& in, Candidate& candidate)
+{
+  const double could_report = kKeepTrackRatio * in.params.decision_threshold;
+  if (!(in.params.rival_part_support > 0.0) || candidate.object.score < could_report)
+    return;
+  const int prototype = candidate.object.prototype_id;
+  const Prototype& p = in.memory[prototype];
+  const RivalVerdict fitted = rivalVerdict(in, p, liftAffine(candidate.table_to_image), candidate.score_tolerance);
+  Affine turned;
+  if (fitted.support >= in.params.rival_part_support ||
+      !turnOntoDistinguishingParts(in, p, candidate.table_to_image, candidate.score_tolerance, turned))
+    return;
+  Candidate other;
+  const Affine refined = refineOnEdges(p, in.scanner, turned, in.params.refine_iterations, in.params.refine_search);
+  if (!describeObject(in, prototype, refined, other) || other.object.score < could_report)
+    return;
+  // The turn was chosen among many for the edges its distinguishing part
+  // finds, some of them clutter's: that part must then verify as a whole
+  // outline must (decision_threshold), not just pass the rival check.
+  const RivalVerdict verdict = rivalVerdict(in, p, liftAffine(refined), other.score_tolerance);
+  if (verdict.support >= std::max(in.params.rival_part_support, in.params.decision_threshold))
+    candidate = std::move(other);
+}
+
 /// The fit of the candidate's outline by a homography, when the outline
 /// demands it (perspective_choice.h); the candidate is left as it is otherwise.
 void fitPerspective(const ExtractionInput& in, Candidate& candidate)
@@ -87,6 +117,7 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
   const int prototype = candidate.object.prototype_id;
   PerspectiveRule rule;
   rule.tolerance = candidate.score_tolerance;
+  rule.part_shift = in.params.part_shift;
   rule.max_scale = in.params.max_affine_scale;
   const PerspectiveFit fit = choosePerspective(in.memory[prototype], in.scanner, candidate.table_to_image,
                                                candidate.object.score, in.params.refine_iterations,
@@ -113,7 +144,10 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
     {
       Candidate candidate;
       const Affine refined = refineOnEdges(p, in.scanner, affine, in.params.refine_iterations, in.params.refine_search);
-      if (describeObject(in, start.prototype, refined, candidate) &&
+      const bool described = describeObject(in, start.prototype, refined, candidate);
+      if (described)
+        turnRoundShape(in, candidate);
+      if (described &&
           (!found[s] || candidate.object.score > fitted[s].object.score))
       {
         fitted[s] = std::move(candidate);

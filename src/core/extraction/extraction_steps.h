@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "amcr/base/affine.h"
+#include "amcr/base/homography.h"
 #include "amcr/base/params.h"
+#include "amcr/extraction/generic_rivals.h"
 #include "amcr/extraction/object_extractor.h"
 
 namespace amcr
@@ -28,6 +30,9 @@ struct Candidate
   Affine table_to_image;         // the fitted affine, table px -> input px
   double score_tolerance = 0.0;  // px: the score's tolerance at the object's size
   bool adopted = false;          // took over a look-alike's V-particles (adoptSupport)
+  // Share of the outline points that tell the prototype from its generic
+  // rivals found on edges (generic_rivals.h; 1 when not checked).
+  double rival_support = 1.0;
 };
 
 /// Where the fit of one prototype starts: a group's affine and the affines
@@ -55,6 +60,28 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
 /// Each start refined on the image's edges and verified, best score first
 /// (candidate_fit.cpp).
 std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vector<FitStart>& starts);
+
+/// The share of a candidate's distinguishing points (against its
+/// prototype's generic rivals) on the image's edges, for every candidate
+/// that could be reported (candidate_fit.cpp).
+void verifyRivals(const ExtractionInput& in, std::vector<Candidate>& candidates);
+
+/// The rival check of a prototype at a table -> image transform, with the
+/// distinguishing points' search scaled from the score's tolerance.
+RivalVerdict rivalVerdict(const ExtractionInput& in, const Prototype& prototype, const Homography& table_to_image,
+                          double score_tolerance);
+
+/// For a prototype whose rival ellipse explains its body but not its
+/// distinguishing part at `table_to_image`: the pose turned about the
+/// ellipse's centre (every 5 degrees when round, else half a turn) that
+/// puts the distinguishing part best on edges, in `turned`; false when no
+/// turn does better (rival_check.cpp).
+bool turnOntoDistinguishingParts(const ExtractionInput& in, const Prototype& prototype, const Affine& table_to_image,
+                                 double score_tolerance, Affine& turned);
+
+/// Whether a candidate passes its rival check: at least rival_part_support
+/// of its distinguishing points on edges (`tracked`: kKeepTrackRatio of it).
+bool passesRivals(const Params& params, const Candidate& candidate, bool tracked);
 
 /// A candidate that verifies better than an overlapping look-alike where
 /// the two differ takes over its support (look_alike_support.cpp).

@@ -1,5 +1,7 @@
 #include "amcr/extraction/homography_fit.h"
 
+#include "amcr/extraction/outline_parts.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -178,9 +180,11 @@ Homography refineHomographyOnEdges(const Prototype& prototype, const RadialScann
 }
 
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,
-                      double tolerance)
+                      double tolerance, double part_shift)
 {
-  return mappedOutlineSupport(scanner, mapOutline(prototype, table_to_image), prototype.outline().size(), tolerance);
+  const std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
+  return mappedOutlineSupport(scanner, fitPartsOnEdges(scanner, mapped, partShiftLimit(mapped, part_shift), tolerance),
+                              prototype.outline().size(), tolerance);
 }
 
 double outlineResidual(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,

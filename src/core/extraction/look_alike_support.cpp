@@ -76,7 +76,7 @@ void adoptSupport(const ExtractionInput& in, std::vector<Candidate>& candidates)
       const Candidate& supported = candidates[j];
       if (supported.object.prototype_id == better.object.prototype_id ||
           supported.object.support <= better.object.support ||
-          better.object.score < in.params.decision_threshold ||
+          better.object.score < in.params.decision_threshold || !passesRivals(in.params, better, false) ||
           outlineOverlap(better.object.outline, supported.object.outline) <= kSameObjectOverlap ||
           !(clearlyBetterOnTheWhole(better, supported) || winsOnDifferingParts(in, better, supported)))
         continue;

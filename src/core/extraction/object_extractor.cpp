@@ -5,6 +5,7 @@
 // look_alike_support.cpp (extraction_steps.h).
 #include "amcr/extraction/object_extractor.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "amcr/extraction/track_registry.h"
@@ -42,8 +43,10 @@ std::vector<EvidenceBonus> verificationEvidence(const ExtractionInput& in, const
       const cv::Point2d prototype_point = applyAffine(p.tableToOriginal(), cv::Point2d(c.mean));
       const cv::Point2d predicted = object.homography_valid ? applyHomography(object.homography, prototype_point)
                                                             : applyAffine(object.prototype_to_image, prototype_point);
+      // One whose distinguishing parts are not on edges is no better than
+      // its generic rival: its V-particles gain nothing from it.
       if (std::hypot(predicted.x - v[c.v].x, predicted.y - v[c.v].y) <= in.params.group_tolerance)
-        best = object.score;
+        best = passesRivals(in.params, candidate, true) ? object.score : std::min(object.score, 0.5);
     }
     if (best >= 0.0)
       evidence.push_back({c.v, kVerificationGain * (best - 0.5)});
@@ -88,7 +91,8 @@ void report(const Params& params, const TrackRegistry& registry, std::vector<Can
     int support = candidate.adopted ? 1 : params.min_support;
     if (track)
       support = track->object.state == ObjectState::kTentative ? 1 : 0;
-    if (c.score < threshold || c.support < support || (!track && !registry.hasRoom(new_tracks)))
+    if (c.score < threshold || c.support < support || !passesRivals(params, candidate, track != nullptr) ||
+        (!track && !registry.hasRoom(new_tracks)))
       continue;
     bool suppressed = false;
     for (const auto& kept : extraction.objects)
@@ -122,6 +126,7 @@ Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& sca
   params.min_object_size = min_object_size;
   const ExtractionInput in{filter, scanner, extraction.clusters, params, filter.memory()};
   std::vector<Candidate> candidates = fitCandidates(in, fitStarts(in, tracks));
+  verifyRivals(in, candidates);
   if (in.params.competing_fits > 0)
     adoptSupport(in, candidates);
   extraction.feedback.evidence = verificationEvidence(in, candidates);

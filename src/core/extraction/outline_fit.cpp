@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amcr/extraction/outline_edges.h"
+#include "amcr/extraction/outline_parts.h"
 
 namespace amcr
 {
@@ -64,9 +65,11 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
 }
 
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
-                      double tolerance)
+                      double tolerance, double part_shift)
 {
-  return mappedOutlineSupport(scanner, mapOutline(prototype, table_to_image), prototype.outline().size(), tolerance);
+  const std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
+  return mappedOutlineSupport(scanner, fitPartsOnEdges(scanner, mapped, partShiftLimit(mapped, part_shift), tolerance),
+                              prototype.outline().size(), tolerance);
 }
 
 double verifyTolerance(double object_size, double tolerance, double relative)
