@@ -290,4 +290,19 @@ amcr::RaySignature tableRays(const amcr::Prototype& prototype, int x, int y, int
   }
   return s;
 }
+std::vector<cv::Mat> printedOverClutter(const cv::Mat& silhouette, const amcr::Affine& truth, const Clutter& clutter,
+                                        int frames)
+{
+  Scene scene;
+  scene.clutter = clutter;
+  scene.objects = {{ShapeId::kCrescent, truth}};  // only to keep the distractors off the print's place
+  const cv::Mat background = renderBackground(scene);
+  cv::Mat shape;
+  cv::warpAffine(silhouette, shape, cv::Mat(truth), background.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0);
+  const cv::Mat clean = background - shape * (150.0 / 255.0);
+  std::vector<cv::Mat> out;
+  for (int k = 0; k < frames; ++k)
+    out.push_back(addNoise(clean, clutter.noise_sigma, clutter.seed * 1000 + static_cast<std::uint64_t>(k)));
+  return out;
+}
 }  // namespace amcr_test

@@ -168,6 +168,14 @@ std::vector<cv::Mat> renderMovingSequence(const Scene& scene, int frames, Object
   return out;
 }
 
+/// `frames` frames of `silhouette` (a prototype image, 255 on the shape)
+/// printed 150 grey levels darker than the paper under `truth` over the
+/// background and distractors of `clutter` (kept off the print's place),
+/// each frame with its own noise (seed clutter.seed * 1000 + frame): a
+/// printed shape that is none of the ShapeId silhouettes.
+std::vector<cv::Mat> printedOverClutter(const cv::Mat& silhouette, const amcr::Affine& truth, const Clutter& clutter,
+                                        int frames);
+
 /// The four corners of a prototype image of `size` (pixel-centre convention):
 /// (0,0), (w-1,0), (w-1,h-1), (0,h-1).
 std::vector<cv::Point2d> imageCorners(const cv::Size& size);

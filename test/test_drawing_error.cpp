@@ -9,7 +9,6 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <opencv2/imgproc.hpp>
 
 #include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
@@ -62,19 +61,11 @@ std::shared_ptr<const amcr::PrototypeMemory> memoryWithTargetOff(double error)
 std::vector<cv::Mat> frames(std::uint64_t seed, amcr::Affine& truth)
 {
   truth = amcr_test::makeAffine(amcr_test::prototypeCentre(), {320, 240}, 0.5, 0.9, 0.9, 0.05);
-  amcr_test::Scene scene;
-  scene.clutter.random_shapes = 6;
-  scene.clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
-  scene.clutter.seed = seed;
-  scene.objects = {{ShapeId::kCrescent, truth}};  // only to keep the clutter off the target's place
-  const cv::Mat background = amcr_test::renderBackground(scene);
-  cv::Mat shape;
-  cv::warpAffine(trueTarget(), shape, cv::Mat(truth), background.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0);
-  const cv::Mat clean = background - shape * (150.0 / 255.0);
-  std::vector<cv::Mat> out;
-  for (int k = 0; k < kFindWithin; ++k)
-    out.push_back(amcr_test::addNoise(clean, scene.clutter.noise_sigma, seed * 1000 + static_cast<std::uint64_t>(k)));
-  return out;
+  amcr_test::Clutter clutter;
+  clutter.random_shapes = 6;
+  clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
+  clutter.seed = seed;
+  return amcr_test::printedOverClutter(trueTarget(), truth, clutter, kFindWithin);
 }
 
 /// The first frame (1-based) reporting "target" with its centre near the
