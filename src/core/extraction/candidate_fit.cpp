@@ -90,10 +90,11 @@ void turnRoundShape(const ExtractionInput& in, Candidate& candidate)
     return;
   const int prototype = candidate.object.prototype_id;
   const Prototype& p = in.memory[prototype];
-  const RivalVerdict fitted = rivalVerdict(in, p, liftAffine(candidate.table_to_image), candidate.score_tolerance);
+  const RivalVerdict fitted =
+      rivalVerdict(in, prototype, liftAffine(candidate.table_to_image), candidate.score_tolerance);
   Affine turned;
   if (fitted.support >= in.params.rival_part_support ||
-      !turnOntoDistinguishingParts(in, p, candidate.table_to_image, candidate.score_tolerance, turned))
+      !turnOntoDistinguishingParts(in, prototype, candidate.table_to_image, candidate.score_tolerance, turned))
     return;
   Candidate other;
   const Affine refined = refineOnEdges(p, in.scanner, turned, in.params.refine_iterations, in.params.refine_search);
@@ -102,7 +103,7 @@ void turnRoundShape(const ExtractionInput& in, Candidate& candidate)
   // The turn was chosen among many for the edges its distinguishing part
   // finds, some of them clutter's: that part must then verify as a whole
   // outline must (decision_threshold), not just pass the rival check.
-  const RivalVerdict verdict = rivalVerdict(in, p, liftAffine(refined), other.score_tolerance);
+  const RivalVerdict verdict = rivalVerdict(in, prototype, liftAffine(refined), other.score_tolerance);
   if (verdict.support >= std::max(in.params.rival_part_support, in.params.decision_threshold))
     candidate = std::move(other);
 }

@@ -43,6 +43,10 @@ struct FitStart
   std::vector<Affine> affines;
 };
 
+/// The generic rivals of the prototypes the frame's fits start from, by
+/// prototype index (empty for the others), fitted once per frame.
+using RivalTable = std::vector<std::vector<GenericRival>>;
+
 /// What every step of the extraction reads.
 struct ExtractionInput
 {
@@ -51,6 +55,7 @@ struct ExtractionInput
   const std::vector<VParticleCluster>& clusters;
   const Params& params;
   const PrototypeMemory& memory;
+  const RivalTable* rivals = nullptr;  ///< rivalTable() of the frame's starts; none: fitted where needed
 };
 
 /// Where the fits start: each group of clusters, each tracked object, and
@@ -66,9 +71,14 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
 /// that could be reported (candidate_fit.cpp).
 void verifyRivals(const ExtractionInput& in, std::vector<Candidate>& candidates);
 
-/// The rival check of a prototype at a table -> image transform, with the
-/// distinguishing points' search scaled from the score's tolerance.
-RivalVerdict rivalVerdict(const ExtractionInput& in, const Prototype& prototype, const Homography& table_to_image,
+/// The generic rivals of the starts' prototypes, when the rival check is on
+/// (rival_check.cpp).
+RivalTable rivalTable(const ExtractionInput& in, const std::vector<FitStart>& starts);
+
+/// The rival check of prototype `prototype` (its index) at a table -> image
+/// transform, with the distinguishing points' search scaled from the
+/// score's tolerance.
+RivalVerdict rivalVerdict(const ExtractionInput& in, int prototype, const Homography& table_to_image,
                           double score_tolerance);
 
 /// For a prototype whose rival ellipse explains its body but not its
@@ -76,7 +86,7 @@ RivalVerdict rivalVerdict(const ExtractionInput& in, const Prototype& prototype,
 /// ellipse's centre (every 5 degrees when round, else half a turn) that
 /// puts the distinguishing part best on edges, in `turned`; false when no
 /// turn does better (rival_check.cpp).
-bool turnOntoDistinguishingParts(const ExtractionInput& in, const Prototype& prototype, const Affine& table_to_image,
+bool turnOntoDistinguishingParts(const ExtractionInput& in, int prototype, const Affine& table_to_image,
                                  double score_tolerance, Affine& turned);
 
 /// Whether a candidate passes its rival check: at least rival_part_support

@@ -124,8 +124,12 @@ Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& sca
   extraction.clusters = filterClusters(filter);
   Params params = filter.params();
   params.min_object_size = min_object_size;
-  const ExtractionInput in{filter, scanner, extraction.clusters, params, filter.memory()};
-  std::vector<Candidate> candidates = fitCandidates(in, fitStarts(in, tracks));
+  const ExtractionInput plain{filter, scanner, extraction.clusters, params, filter.memory()};
+  const std::vector<FitStart> starts = fitStarts(plain, tracks);
+  // The generic rivals of the prototypes fitted in this frame, once each.
+  const RivalTable rivals = rivalTable(plain, starts);
+  const ExtractionInput in{filter, scanner, extraction.clusters, params, filter.memory(), &rivals};
+  std::vector<Candidate> candidates = fitCandidates(in, starts);
   verifyRivals(in, candidates);
   if (in.params.competing_fits > 0)
     adoptSupport(in, candidates);

@@ -2,6 +2,7 @@
 // the parts of each outline that tell its prototype from an ellipse, its
 // convex hull, its rectangle or a pair of lines must lie on the image's
 // edges as well as the whole outline's score says.
+#include <algorithm>
 #include <cmath>
 
 #include "amcr/base/homography.h"
@@ -54,18 +55,45 @@ Affine turnAbout(const cv::Point2d& centre, double angle)
   const double c = std::cos(angle), s = std::sin(angle);
   return Affine(c, -s, centre.x - c * centre.x + s * centre.y, s, c, centre.y - s * centre.x - c * centre.y);
 }
+
+/// The prototype's rivals: from the frame's table, else fitted into `fitted`.
+const std::vector<GenericRival>& rivalsOf(const ExtractionInput& in, int prototype,
+                                          std::vector<GenericRival>& fitted)
+{
+  if (in.rivals != nullptr && !(*in.rivals)[prototype].empty())
+    return (*in.rivals)[prototype];
+  fitted = genericRivals(in.memory[prototype]);
+  return fitted;
+}
 }  // namespace
 
-RivalVerdict rivalVerdict(const ExtractionInput& in, const Prototype& prototype, const Homography& table_to_image,
-                          double score_tolerance)
+RivalTable rivalTable(const ExtractionInput& in, const std::vector<FitStart>& starts)
 {
-  return verdictAt(in, prototype, genericRivals(prototype), table_to_image, score_tolerance);
+  RivalTable table(in.memory.size());
+  if (!(in.params.rival_part_support > 0.0))
+    return table;
+  std::vector<int> prototypes;
+  for (const FitStart& start : starts)
+    if (std::find(prototypes.begin(), prototypes.end(), start.prototype) == prototypes.end())
+      prototypes.push_back(start.prototype);
+  parallelFor(static_cast<int>(prototypes.size()), resolveThreads(in.params.num_threads),
+              [&](int i) { table[prototypes[i]] = genericRivals(in.memory[prototypes[i]]); });
+  return table;
 }
 
-bool turnOntoDistinguishingParts(const ExtractionInput& in, const Prototype& prototype, const Affine& table_to_image,
+RivalVerdict rivalVerdict(const ExtractionInput& in, int prototype, const Homography& table_to_image,
+                          double score_tolerance)
+{
+  std::vector<GenericRival> fitted;
+  return verdictAt(in, in.memory[prototype], rivalsOf(in, prototype, fitted), table_to_image, score_tolerance);
+}
+
+bool turnOntoDistinguishingParts(const ExtractionInput& in, int prototype_index, const Affine& table_to_image,
                                  double score_tolerance, Affine& turned)
 {
-  const std::vector<GenericRival> rivals = genericRivals(prototype);
+  const Prototype& prototype = in.memory[prototype_index];
+  std::vector<GenericRival> fitted;
+  const std::vector<GenericRival>& rivals = rivalsOf(in, prototype_index, fitted);
   if (rivals.empty() || rivals[0].kind != GenericRival::Kind::kEllipse)
     return false;
   const RivalVerdict at_fit = verdictAt(in, prototype, rivals, liftAffine(table_to_image), score_tolerance);
@@ -127,10 +155,11 @@ void verifyRivals(const ExtractionInput& in, std::vector<Candidate>& candidates)
     Candidate& candidate = candidates[i];
     if (candidate.object.score < could_report)
       return;
-    const Prototype& p = in.memory[candidate.object.prototype_id];
+    const int prototype = candidate.object.prototype_id;
     // The transform the object is reported with: its homography when used.
-    const Homography table_to_image = composeHomography(liftAffine(p.tableToOriginal()), candidate.object.homography);
-    const RivalVerdict verdict = rivalVerdict(in, p, table_to_image, candidate.score_tolerance);
+    const Homography table_to_image =
+        composeHomography(liftAffine(in.memory[prototype].tableToOriginal()), candidate.object.homography);
+    const RivalVerdict verdict = rivalVerdict(in, prototype, table_to_image, candidate.score_tolerance);
     candidate.rival_support = verdict.support;
   });
 }
