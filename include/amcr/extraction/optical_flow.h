@@ -15,6 +15,10 @@ struct FlowVector
 {
   cv::Point2f to;     ///< position in the current frame, px
   bool ok = false;    ///< false: not found, too large an error, or left the image
+  /// false: Lucas-Kanade found no flow there at all (its window too flat to
+  /// track, or off the image), as opposed to a flow whose window does not
+  /// match the new frame (too large an error: occlusion, a new scene)
+  bool found = false;
 };
 
 class PyramidFlow

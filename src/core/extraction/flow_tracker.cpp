@@ -58,8 +58,8 @@ VParticleMove moveWithTrack(const VParticle& v, const Affine& m, const cv::Size&
   return move;
 }
 
-/// The moves of the free V-particles whose own flow failed. A point of an
-/// untextured surface (the inside of a flat part, a wall) has no flow of its
+/// The moves of the free V-particles for which Lucas-Kanade found no flow
+/// at all. A point of an untextured surface (the inside of a flat part, a wall) has no flow of its
 /// own: Lucas-Kanade's window sees no gradient, and in a clean image no
 /// noise either. Such a V-particle moves as its nearest neighbours whose
 /// flow succeeded (the median of their displacements) instead of being
@@ -78,7 +78,9 @@ void moveWithNeighbours(const std::vector<cv::Point2f>& from, const std::vector<
   std::vector<float> dx(kNeighbourFlows), dy(kNeighbourFlows);
   for (std::size_t i = 0; i < flow.size(); ++i)
   {
-    if (flow[i].ok)
+    // A flow that was found but does not match (occlusion, a new scene)
+    // says the V-particle's place is gone: it is lost.
+    if (flow[i].ok || flow[i].found)
       continue;
     for (std::size_t k = 0; k < ok.size(); ++k)
     {

@@ -91,7 +91,10 @@ void report(const Params& params, const TrackRegistry& registry, std::vector<Can
     int support = candidate.adopted ? 1 : params.min_support;
     if (track)
       support = track->object.state == ObjectState::kTentative ? 1 : 0;
-    if (c.score < threshold || c.support < support || !passesRivals(params, candidate, track != nullptr) ||
+    // A new object must explain its distinguishing parts (generic_rivals.h);
+    // a tracked one passed that check when it started, and keeps its track
+    // on the score's hysteresis alone (a moving part blurs them for a while).
+    if (c.score < threshold || c.support < support || (!track && !passesRivals(params, candidate, false)) ||
         (!track && !registry.hasRoom(new_tracks)))
       continue;
     bool suppressed = false;

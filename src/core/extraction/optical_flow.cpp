@@ -49,6 +49,7 @@ std::vector<FlowVector> PyramidFlow::track(const std::vector<cv::Point2f>& from)
   for (std::size_t i = 0; i < from.size(); ++i)
   {
     flow[i].to = to[i];
+    flow[i].found = status[i] != 0;
     flow[i].ok = status[i] && error[i] <= max_error_ && to[i].x >= 0.f && to[i].y >= 0.f && to[i].x <= max_x &&
                  to[i].y <= max_y;
   }
