@@ -93,7 +93,8 @@ TEST(OutlineParts, APartMovesNoFartherThanItMay)
   Fixture f(0.03);  // the hole is 4.8 prototype px off, 3.6 px in the scene
   const std::vector<amcr::MappedPoint> mapped = amcr::mapOutline(f.memory[0], f.table_to_image);
   const double limit = 3.0;  // px: its edges are within reach, its place beyond
-  const std::vector<amcr::MappedPoint> moved = amcr::fitPartsOnEdges(*f.scanner, mapped, limit, kTolerance);
+  std::vector<amcr::MappedPoint> moved = mapped;
+  amcr::fitPartsOnEdges(*f.scanner, moved, limit, kTolerance);
   ASSERT_EQ(moved.size(), mapped.size());
   double largest = 0.0;
   for (std::size_t i = 0; i < mapped.size(); ++i)

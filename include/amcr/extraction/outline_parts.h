@@ -19,18 +19,26 @@ namespace amcr
 /// contour).
 std::vector<std::pair<std::size_t, std::size_t>> outlineParts(const std::vector<MappedPoint>& mapped);
 
-/// `mapped` with each inner part (every contour but the one with the most
-/// points) moved onto the image's edges: the translation and the scale
+/// Moves each inner part of `mapped` (every contour but the one with the
+/// most points) onto the image's edges, in place: the translation and the scale
 /// about the part's centre that put its points on the nearest edges of the
 /// outline's majority polarity (least squares along the normals, 3 passes
 /// with the search shrinking from `max_shift` + `tolerance` to `tolerance`),
 /// no point moved by more than `max_shift` px. A part with fewer than 6
 /// points, or with fewer than half of them on edges, stays where it is.
-/// `max_shift` <= 0 returns `mapped` unchanged.
-std::vector<MappedPoint> fitPartsOnEdges(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,
-                                         double max_shift, double tolerance);
+/// `max_shift` <= 0 leaves `mapped` unchanged.
+void fitPartsOnEdges(const RadialScanner& scanner, std::vector<MappedPoint>& mapped, double max_shift,
+                     double tolerance);
 
 /// The largest distance a part may move for an object of the mapped
 /// outline: `share` of the longer side of its image bounding box.
 double partShiftLimit(const std::vector<MappedPoint>& mapped, double share);
+
+/// fitPartsOnEdges with the bound `share` of the object's size
+/// (partShiftLimit): what the score and the rival check count.
+inline void fitPartsWithinShare(const RadialScanner& scanner, std::vector<MappedPoint>& mapped, double share,
+                                double tolerance)
+{
+  fitPartsOnEdges(scanner, mapped, partShiftLimit(mapped, share), tolerance);
+}
 }  // namespace amcr

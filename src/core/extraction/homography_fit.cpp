@@ -182,9 +182,9 @@ Homography refineHomographyOnEdges(const Prototype& prototype, const RadialScann
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,
                       double tolerance, double part_shift)
 {
-  const std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
-  return mappedOutlineSupport(scanner, fitPartsOnEdges(scanner, mapped, partShiftLimit(mapped, part_shift), tolerance),
-                              prototype.outline().size(), tolerance);
+  std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
+  fitPartsWithinShare(scanner, mapped, part_shift, tolerance);
+  return mappedOutlineSupport(scanner, mapped, prototype.outline().size(), tolerance);
 }
 
 double outlineResidual(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,

@@ -67,9 +67,9 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
                       double tolerance, double part_shift)
 {
-  const std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
-  return mappedOutlineSupport(scanner, fitPartsOnEdges(scanner, mapped, partShiftLimit(mapped, part_shift), tolerance),
-                              prototype.outline().size(), tolerance);
+  std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
+  fitPartsWithinShare(scanner, mapped, part_shift, tolerance);
+  return mappedOutlineSupport(scanner, mapped, prototype.outline().size(), tolerance);
 }
 
 double verifyTolerance(double object_size, double tolerance, double relative)

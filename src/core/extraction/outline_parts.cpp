@@ -102,22 +102,20 @@ double partShiftLimit(const std::vector<MappedPoint>& mapped, double share)
   return share * std::max(max_x - min_x, max_y - min_y);
 }
 
-std::vector<MappedPoint> fitPartsOnEdges(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,
-                                         double max_shift, double tolerance)
+void fitPartsOnEdges(const RadialScanner& scanner, std::vector<MappedPoint>& mapped, double max_shift,
+                     double tolerance)
 {
-  std::vector<MappedPoint> out = mapped;
   if (!(max_shift > 0.0) || mapped.empty())
-    return out;
+    return;
   const auto parts = outlineParts(mapped);
   if (parts.size() < 2)
-    return out;
+    return;
   const auto outer = std::max_element(parts.begin(), parts.end(), [](const auto& a, const auto& b) {
     return a.second - a.first < b.second - b.first;
   });
   const int sign = dominantPolarity(scanner, mapped, tolerance);
   for (auto part = parts.begin(); part != parts.end(); ++part)
     if (part != outer && part->second - part->first >= kMinPartPoints)
-      fitPart(scanner, out, part->first, part->second, sign, max_shift, tolerance);
-  return out;
+      fitPart(scanner, mapped, part->first, part->second, sign, max_shift, tolerance);
 }
 }  // namespace amcr

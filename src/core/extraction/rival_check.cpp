@@ -41,10 +41,9 @@ RivalVerdict verdictAt(const ExtractionInput& in, const Prototype& p, const std:
                        const Homography& table_to_image, double score_tolerance)
 {
   // The inner parts where the score counts them (outline_parts.h).
-  const std::vector<MappedPoint> mapped = mapOutline(p, table_to_image);
-  const std::vector<MappedPoint> fitted =
-      fitPartsOnEdges(in.scanner, mapped, partShiftLimit(mapped, in.params.part_shift), score_tolerance);
-  return verifyAgainstRivals(in.scanner, fitted, rivals, table_to_image,
+  std::vector<MappedPoint> mapped = mapOutline(p, table_to_image);
+  fitPartsWithinShare(in.scanner, mapped, in.params.part_shift, score_tolerance);
+  return verifyAgainstRivals(in.scanner, mapped, rivals, table_to_image,
                              kRivalSearch * score_tolerance, kRivalApart * kRivalSearch * score_tolerance,
                              kMinRivalPoints);
 }
