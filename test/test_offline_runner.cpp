@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "amcr/overlay.h"
 #include "offline_runner_test.h"
+#include "template_drawing.h"
 
 namespace offline_runner_test
 {
@@ -99,5 +101,37 @@ TEST_F(OfflineRunner, VideoInputAndOverlayVideoOfFixedSize)
   const RunResult capped = run(fastArgs(video, {"--frames", "2"}));
   ASSERT_EQ(capped.exit_code, 0) << capped.err;
   EXPECT_EQ(parseFrames(capped.out).size(), 2u);
+}
+}  // namespace offline_runner_test
+
+namespace offline_runner_test
+{
+// --write-models alone: one picture per prototype, the grey template among
+// them read as one (its model holds points inside its body, on the disc).
+TEST_F(OfflineRunner, WriteModelsDrawsEveryPrototypesModel)
+{
+  const fs::path prototypes = root_ / "with_template";
+  fs::create_directories(prototypes);
+  for (const char* name : {"star.png", "arrow.png"})
+    fs::copy_file(root_ / "prototypes" / name, prototypes / name, fs::copy_options::overwrite_existing);
+  ASSERT_TRUE(cv::imwrite((prototypes / "part.png").string(), amcr_test::drawGreyTemplate()));
+  const fs::path models = root_ / "models" / "new";
+  const RunResult r =
+      run({"--prototypes", prototypes.string(), "--config", (root_ / "fast.yaml").string(), "--write-models",
+           models.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("(1 grey templates, 2 silhouettes)"), std::string::npos) << r.err;
+  for (const char* name : {"star.model.png", "arrow.model.png", "part.model.png"})
+  {
+    const cv::Mat picture = cv::imread((models / name).string());
+    ASSERT_FALSE(picture.empty()) << name;
+    EXPECT_GT(picture.cols, 64) << name;
+  }
+  EXPECT_TRUE(r.out.empty()) << "no frame was asked for";
+
+  // Without --input and --write-models, --input is missing.
+  const RunResult missing = run({"--prototypes", prototypes.string()});
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("missing --input PATH"), std::string::npos) << missing.err;
 }
 }  // namespace offline_runner_test

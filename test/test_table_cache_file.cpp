@@ -37,16 +37,19 @@ TEST(PrototypeBytes, RoundTripAndEveryDamageIsAMemoryError)
   longer.push_back(0);
   EXPECT_THROW(amcr::Prototype::fromBytes("star", longer.data(), longer.size()), amcr::MemoryError);
 
-  // The fields that size what follows: width (byte 16), height (20), and
-  // the table's byte count right after the mask and the two affines.
+  // The fields that size what follows: the stride (byte 16), the table's
+  // width (20) and height (24), the kind (silhouette or template) right
+  // after the mask, and the table's byte count after the two affines.
   const auto spoiled = [&](std::size_t at, std::int64_t value, std::size_t width) {
     std::vector<std::uint8_t> b = bytes;
     std::memcpy(b.data() + at, &value, width);
     return b;
   };
-  const std::size_t table_count_at = 24 + static_cast<std::size_t>(prototype.width() * prototype.height()) + 96;
-  for (const auto& b : {spoiled(16, 0, 4), spoiled(16, -5, 4), spoiled(20, 1 << 30, 4), spoiled(16, 4000, 4),
-                        spoiled(table_count_at, 12, 8), spoiled(table_count_at, -1, 8)})
+  const std::size_t kind_at = 28 + static_cast<std::size_t>(prototype.width() * prototype.height());
+  const std::size_t table_count_at = kind_at + 4 + 96;
+  for (const auto& b : {spoiled(16, 0, 4), spoiled(16, -5, 4), spoiled(20, 1 << 30, 4), spoiled(20, 4000, 4), spoiled(24, 0, 4),
+                        spoiled(kind_at, 2, 4), spoiled(kind_at, -1, 4), spoiled(table_count_at, 12, 8),
+                        spoiled(table_count_at, -1, 8)})
     EXPECT_THROW(amcr::Prototype::fromBytes("star", b.data(), b.size()), amcr::MemoryError);
   const std::size_t interior_count_at = table_count_at + 8 + prototype.tableBytes();
   const auto huge = spoiled(interior_count_at, std::int64_t(1) << 60, 8);
@@ -68,6 +71,9 @@ TEST(TableCacheKey, ChangesWithTheImageAndEveryTableParameterOnly)
   EXPECT_NE(amcr::tableCacheKey(1, p), key);
   p = base;
   p.blur_sigma = 1.5;
+  EXPECT_NE(amcr::tableCacheKey(1, p), key);
+  p = base;
+  p.edge_full_strength = 80;  // a template's edges follow it
   EXPECT_NE(amcr::tableCacheKey(1, p), key);
   p = base;
   p.table_stride = 2;

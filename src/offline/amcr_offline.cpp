@@ -15,11 +15,13 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "amcr/base/errors.h"
 #include "amcr/base/params.h"
+#include "amcr/memory/edge_model.h"
 #include "amcr/memory/prototype_memory.h"
 #include "amcr/overlay.h"
 #include "amcr/recognizer.h"
@@ -114,10 +116,48 @@ private:
   cv::Size size_;
 };
 
+std::shared_ptr<amcr::PrototypeMemory> loadMemory(const RunnerOptions& options, const amcr::Params& params)
+{
+  return std::make_shared<amcr::PrototypeMemory>(
+      amcr::PrototypeMemory::loadDirectory(options.prototypes, params, reportWarning, [](const std::string& line) {
+        std::cerr << "amcr_offline: " << line << "\n";
+      }));
+}
+
+/// Each prototype's edge model (amcr/memory/edge_model.h) as DIR/<instance>.model.png:
+/// the instance's file name without its extension, its folders joined by '_'
+/// ("bird/bird-3.png" -> "bird_bird-3.model.png").
+void writeModels(const amcr::PrototypeMemory& memory, const std::string& folder)
+{
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (!std::filesystem::is_directory(folder, error))
+    throw std::runtime_error("cannot write the models to '" + folder + "': not a folder that can be made");
+  int templates = 0;
+  for (std::size_t p = 0; p < memory.size(); ++p)
+  {
+    std::string name = std::filesystem::path(memory[p].instance()).replace_extension().string();
+    for (char& c : name)
+      c = (c == '/' || c == '\\') ? '_' : c;
+    const std::string path = (std::filesystem::path(folder) / (name + ".model.png")).string();
+    if (!cv::imwrite(path, amcr::drawEdgeModel(memory[p])))
+      throw std::runtime_error("cannot write '" + path + "'");
+    templates += memory[p].isTemplate() ? 1 : 0;
+  }
+  std::cerr << kProgram << ": wrote the models of " << memory.size() << " prototypes (" << templates
+            << " grey templates, " << memory.size() - templates << " silhouettes) to '" << folder << "'"
+            << std::endl;
+}
+
 int run(const RunnerOptions& options)
 {
   // Cheap checks first, the prototype tables last.
   const amcr::Params params = loadConfiguredParams(options);
+  if (options.input.empty())  // --write-models alone
+  {
+    writeModels(*loadMemory(options, params), options.write_models);
+    return 0;
+  }
   std::unique_ptr<FrameSource> source = FrameSource::open(
       options.input, options.has_frames ? options.frames : kDefaultSingleImageFrames, options.has_frames);
 
@@ -144,10 +184,9 @@ int run(const RunnerOptions& options)
                                "' does not exist");
   }
 
-  auto memory = std::make_shared<amcr::PrototypeMemory>(
-      amcr::PrototypeMemory::loadDirectory(options.prototypes, params, reportWarning, [](const std::string& line) {
-        std::cerr << "amcr_offline: " << line << "\n";
-      }));
+  auto memory = loadMemory(options, params);
+  if (!options.write_models.empty())
+    writeModels(*memory, options.write_models);
   amcr::Recognizer recognizer(params, memory);
   for (const std::string& warning : recognizer.filter().indexWarnings())
     reportWarning(warning);

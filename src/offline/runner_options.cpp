@@ -46,7 +46,8 @@ std::string extension(const std::string& path)
 bool startsWithDashes(const std::string& text) { return text.compare(0, 2, "--") == 0; }
 
 /// The options with a value, by name without the dashes; --help (-h) has none.
-const char* const kValueOptions[] = {"prototypes", "input", "config", "seed", "frames", "output", "overlay"};
+const char* const kValueOptions[] = {"prototypes", "input",   "config",      "seed",
+                                     "frames",     "output", "overlay", "write-models"};
 
 /// Splits the command line with program_options: "--name value" and
 /// "--name=value", no abbreviations, "-h" for --help. Unknown options and
@@ -107,6 +108,8 @@ void setOption(RunnerOptions& options, const std::string& name, const std::strin
       throw UsageError("--overlay '" + value + "': unsupported video type (use .avi for MJPG or .mp4 for mp4v)");
     options.overlay = value;
   }
+  else if (name == "--write-models")
+    options.write_models = value;
   else if (name == "--seed")
   {
     if (!parseUnsigned(value, 0, std::numeric_limits<std::uint64_t>::max(), options.seed))
@@ -166,7 +169,7 @@ RunnerOptions parseRunnerOptions(const std::vector<std::string>& args)
   {
     if (options.prototypes.empty())
       throw UsageError("missing --prototypes DIR");
-    if (options.input.empty())
+    if (options.input.empty() && options.write_models.empty())
       throw UsageError("missing --input PATH");
   }
   return options;
@@ -175,12 +178,14 @@ RunnerOptions parseRunnerOptions(const std::vector<std::string>& args)
 std::string usageText()
 {
   return R"(Usage: amcr_offline --prototypes DIR --input PATH [options]
+       amcr_offline --prototypes DIR --write-models DIR [--config FILE.yaml]
 
 Runs Radial-AMCR (Active Monte Carlo Recognition) on recorded images and
 writes one JSON object per input frame, one per line.
 
 Required:
-  --prototypes DIR    directory of prototype silhouettes: loose image files
+  --prototypes DIR    directory of prototype images (silhouettes, or grey
+                      templates whose edges are the model): loose image files
                       (label = file name without extension) and label
                       directories (label = the directory's name, each image
                       in it an instance); unusable files are skipped with a
@@ -202,6 +207,11 @@ Options:
                       from the extension: .avi (MJPG) or .mp4 (mp4v). Its frame
                       rate is the input video's, else 10 fps; frames of another
                       size than the first are scaled to the first's size.
+  --write-models DIR  write each prototype's model as a picture to DIR
+                      (created if missing), DIR/<instance>.model.png: the
+                      image it was scanned in, its region, and every point
+                      the score checks, with its normal; how a grey template
+                      was read is checked there. Without --input, only that.
   --help, -h          print this text and exit
 
 Output, one line per input frame (numbers in px, time in ms):

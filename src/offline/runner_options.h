@@ -21,7 +21,7 @@ struct RunnerOptions
 {
   bool help = false;
   std::string prototypes;  ///< --prototypes DIR (required)
-  std::string input;       ///< --input PATH (required)
+  std::string input;       ///< --input PATH (required unless --write-models)
   std::string config;      ///< --config FILE.yaml, empty: built-in defaults
   bool has_seed = false;
   std::uint64_t seed = 0;  ///< --seed N, overrides the YAML's seed
@@ -29,6 +29,7 @@ struct RunnerOptions
   long frames = 100;       ///< --frames N: repeats of a single image; cap for videos and directories
   std::string output;      ///< --output FILE.jsonl, empty: standard output
   std::string overlay;     ///< --overlay FILE (.avi: MJPG, .mp4: mp4v), empty: none
+  std::string write_models;  ///< --write-models DIR: each prototype's edge model as a picture, empty: none
 };
 
 /// The default number of frames made from a single image.

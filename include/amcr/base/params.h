@@ -90,6 +90,11 @@ struct Params
   /// noise floor; 0 = edge_threshold everywhere (edge_thresholds.h).
   double edge_full_strength = 100.0;
   double blur_sigma = 1.0;        ///< Gaussian smoothing before scanning, working px [0, 10]
+  /// A grey template's edges count only where the grey rises across them as
+  /// in the template (shape-based matching's "use polarity"); false: the
+  /// polarity most of its points show, so a part in reversed contrast is
+  /// found (edge_model.h). Silhouettes: no effect (no side of theirs is darker).
+  bool keep_polarity = false;
   /// Longer side of the working image, input px [0, 4000]; a larger input is
   /// reduced to it (never enlarged), and results come back in input px; 0 = the input's own size.
   int working_resolution = 640;

@@ -20,6 +20,7 @@ struct MappedPoint
   cv::Point2d table;   ///< the outline point, table px
   cv::Point2d image;   ///< where the fitted transform puts it, input px
   cv::Point2d normal;  ///< the outline's outward unit normal there, input px
+  int polarity = 0;    ///< the prototype's polarity() : +1 = only edges rising along the normal count; 0 = either
 };
 
 /// The prototype's outline mapped by a table -> image affine (normals by the
@@ -39,7 +40,8 @@ bool nearestEdgeSubpixel(const RadialScanner& scanner, const MappedPoint& p, dou
 
 /// The polarity most outline points show: +1 when the grey level rises
 /// outwards (a dark print on light paper), -1 otherwise; a sample of the
-/// points is enough to tell.
+/// points is enough to tell. A prototype with a polarity of its own
+/// (Prototype::polarity(), carried by its mapped points) gives that one.
 int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped, double search);
 
 /// The search along the normals in pass `pass` of `passes` of an outline

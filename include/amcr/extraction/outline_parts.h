@@ -35,10 +35,13 @@ void fitPartsOnEdges(const RadialScanner& scanner, std::vector<MappedPoint>& map
 double partShiftLimit(const std::vector<MappedPoint>& mapped, double share);
 
 /// fitPartsOnEdges with the bound `share` of the object's size
-/// (partShiftLimit): what the score and the rival check count.
-inline void fitPartsWithinShare(const RadialScanner& scanner, std::vector<MappedPoint>& mapped, double share,
-                                double tolerance)
+/// (partShiftLimit): what the score and the rival check count. A grey
+/// template's edges stay where the photo has them (a template is cut from
+/// the object itself, not drawn from measures): `mapped` is left unchanged.
+inline void fitPartsWithinShare(const Prototype& prototype, const RadialScanner& scanner,
+                                std::vector<MappedPoint>& mapped, double share, double tolerance)
 {
-  fitPartsOnEdges(scanner, mapped, partShiftLimit(mapped, share), tolerance);
+  if (!prototype.isTemplate())
+    fitPartsOnEdges(scanner, mapped, partShiftLimit(mapped, share), tolerance);
 }
 }  // namespace amcr

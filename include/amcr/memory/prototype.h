@@ -14,12 +14,21 @@
 
 namespace amcr
 {
+class RadialScanner;
+
 /// A point of the prototype's outline with its outward unit normal, in
 /// table coordinates.
 struct OutlinePoint
 {
   cv::Point2f position;
   cv::Point2f normal;
+};
+
+/// How a prototype's image was read (edge_model.h).
+enum class PrototypeKind
+{
+  kSilhouette,  ///< two grey levels: the shape's outline (and its holes') is the model
+  kTemplate,    ///< any grey image: all its edges, inner ones included, are the model
 };
 
 class Prototype
@@ -37,7 +46,14 @@ public:
   static int tableMargin(int size) { return size / 8 > 8 ? size / 8 : 8; }
 
   /// Builds the prototype from a silhouette image of either polarity (the
-  /// background is the colour that dominates the image border). `size` is
+  /// background is the colour that dominates the image border), or, when
+  /// the image is not a silhouette (isSilhouette()) or has an alpha channel
+  /// that is not opaque everywhere, from a grey template: its edges are the
+  /// model (kind(), edge_model.h), found with the thresholds the camera
+  /// image gets (`edge_threshold` where the local edge strength reaches
+  /// `edge_full_strength`, edge_thresholds.h), and the alpha channel, when
+  /// there is one, is where the object lies; with `keep_polarity` its edges
+  /// count only with the template's polarity (polarity()). `size` is
   /// the longer side of the shape in the table, px. The table holds what a
   /// RadialScanner with `edge_threshold` finds in the mask smoothed by
   /// `blur_sigma` (scanImage()). Throws MemoryError when the image is empty
@@ -50,10 +66,20 @@ public:
   /// image among the label's instances (the file it came from); "" = the
   /// label.
   Prototype(const std::string& label, const cv::Mat& image, int size, double edge_threshold, double blur_sigma = 1.0,
-            int table_stride = 1, const std::string& instance = std::string());
+            int table_stride = 1, const std::string& instance = std::string(), double edge_full_strength = 0.0,
+            bool keep_polarity = false);
 
-  /// The smoothed mask the table was scanned in.
+  /// The image the table was scanned in: the smoothed mask of a silhouette,
+  /// the smoothed grey of a template (its border replicated into the margin).
   cv::Mat scanImage() const;
+
+  /// Whether the model is a silhouette's outline or a grey template's edges.
+  PrototypeKind kind() const { return kind_; }
+  bool isTemplate() const { return kind_ == PrototypeKind::kTemplate; }
+  /// The polarity an image edge must have to count for the score: +1 for a
+  /// template read with keep_polarity (the grey rising along its points'
+  /// normals, as in the template); 0 = either, the one most points show.
+  int polarity() const { return isTemplate() && keep_polarity_ ? 1 : 0; }
 
   /// The label recognitions carry: what the shape is ("bird").
   const std::string& label() const { return label_; }
@@ -66,7 +92,9 @@ public:
   int width() const { return mask_.cols; }
   int height() const { return mask_.rows; }
 
-  /// The normalised silhouette, CV_8UC1, 255 inside the shape.
+  /// The normalised silhouette, CV_8UC1, 255 inside the shape; for a
+  /// template, the object's region: its alpha channel, else the convex hull
+  /// of its edge points.
   const cv::Mat& mask() const { return mask_; }
 
   /// Distance, table px, from pixel (x, y) to the first edge in direction bin
@@ -91,7 +119,8 @@ public:
   /// Pixels inside the shape (table coordinates), where M-particles are seeded.
   const std::vector<cv::Point>& interior() const { return interior_; }
 
-  /// The outline, evenly resampled, table coordinates.
+  /// The outline, evenly resampled, table coordinates, normals outwards; for
+  /// a template, its edge points, normals towards rising grey.
   const std::vector<OutlinePoint>& outline() const { return outline_; }
 
   /// Maps the original image's pixel coordinates to table coordinates
@@ -119,12 +148,21 @@ public:
 
 private:
   Prototype() = default;  // for fromBytes()
-  void buildTable(double edge_threshold);
+  /// The silhouette's mask, normalised into the table; returns its box in the image.
+  cv::Rect readSilhouette(const cv::Mat& grey, int size);
+  /// The template's scan image, region and edge points; returns its box in the image.
+  cv::Rect readTemplate(const cv::Mat& grey, const cv::Mat& alpha, int size, double edge_threshold,
+                        double edge_full_strength);
+  void buildTable(double edge_threshold, double edge_full_strength);
+  /// Every node's radial scans by `scanner` (paper 4.4).
+  void fillTable(const RadialScanner& scanner);
   /// Node columns and rows for the mask's size and stride_.
   void sizeNodes();
 
   void buildOutline();
 
+  PrototypeKind kind_ = PrototypeKind::kSilhouette;
+  bool keep_polarity_ = false;
   double blur_sigma_ = 1.0;
   int stride_ = 1;
   int node_cols_ = 0;  // ceil(width / stride_)
@@ -133,6 +171,7 @@ private:
   std::string label_;
   std::string instance_;
   cv::Mat mask_;
+  cv::Mat template_scan_;  // a template's scan image (empty for a silhouette: made from mask_)
   std::vector<std::uint8_t> table_;  // [node y][node x][bin], the bins of a node side by side
   std::vector<cv::Point> interior_;
   std::vector<OutlinePoint> outline_;

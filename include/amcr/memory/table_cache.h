@@ -27,7 +27,7 @@ namespace amcr
 {
 /// Changes whenever the table code or the payload layout changes, so that
 /// files of an older build are rebuilt, not read.
-constexpr std::uint32_t kTableFormatVersion = 2;  // 2: the table stride (compact tables for large memories)
+constexpr std::uint32_t kTableFormatVersion = 3;  // 2: the table stride; 3: grey templates (kind, scan image)
 
 /// The directory Params::table_cache_dir names, "~/" expanded: "" (the
 /// default) is $ROS_HOME/amcr/tables, or $HOME/.ros/amcr/tables when

@@ -56,6 +56,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(edge_threshold, "grey levels", 1, 255, "step over 2 px that counts as an edge where the local edge strength reaches edge_full_strength"),
       AMCR_DOUBLE(edge_full_strength, "grey levels", 0, 255, "local edge strength (99th percentile of the 2 px steps within about 50 px) at which edge_threshold applies in full; below it the threshold falls in proportion, down to 5 sigma of the frame's step noise; 0 = edge_threshold everywhere"),
       AMCR_DOUBLE(blur_sigma, "working px", 0, 10, "Gaussian smoothing of the working image before scanning"),
+      AMCR_INT(keep_polarity, "", 0, 1, "1: a grey template's edges count only where the grey rises across them as in the template; 0: the polarity most of its points show (a part in reversed contrast is found); silhouettes: no effect"),
       AMCR_INT(working_resolution, "input px", 0, 4000, "longer side of the working image: a larger input is reduced to it (never enlarged) and the results mapped back to input px; every other length in px is of the working image, except min_object_size; 0 = the input's own size"),
       AMCR_DOUBLE(sigma_w, "px", 1e-3, 1000, "std. dev. of a ray's deviation (eq. 5); paper 10"),
       AMCR_DOUBLE(p_outlier, "", 0, 1, "probability that a ray is an outlier (eq. 5); paper 0.1"),

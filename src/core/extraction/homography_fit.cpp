@@ -134,7 +134,7 @@ std::vector<MappedPoint> mapOutline(const Prototype& prototype, const Homography
     const cv::Point2d image = applyHomography(table_to_image, q);
     if (len < 1e-12 || !std::isfinite(image.x) || !std::isfinite(image.y))
       continue;
-    mapped.push_back({q, image, {nx / len, ny / len}});
+    mapped.push_back({q, image, {nx / len, ny / len}, prototype.polarity()});
   }
   return mapped;
 }
@@ -183,7 +183,7 @@ double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, 
                       double tolerance, double part_shift)
 {
   std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
-  fitPartsWithinShare(scanner, mapped, part_shift, tolerance);
+  fitPartsWithinShare(prototype, scanner, mapped, part_shift, tolerance);
   return mappedOutlineSupport(scanner, mapped, prototype.outline().size(), tolerance);
 }
 

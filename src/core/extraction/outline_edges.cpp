@@ -107,7 +107,7 @@ std::vector<MappedPoint> mapOutline(const Prototype& prototype, const Affine& ta
     const double len = std::hypot(nx, ny);
     if (len < 1e-12)
       continue;
-    mapped.push_back({q, applyAffine(table_to_image, q), {nx / len, ny / len}});
+    mapped.push_back({q, applyAffine(table_to_image, q), {nx / len, ny / len}, prototype.polarity()});
   }
   return mapped;
 }
@@ -136,6 +136,8 @@ bool nearestEdgeSubpixel(const RadialScanner& scanner, const MappedPoint& p, dou
 
 int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped, double search)
 {
+  if (!mapped.empty() && mapped.front().polarity != 0)
+    return mapped.front().polarity;
   int rising = 0, falling = 0;
   for (std::size_t i = 0; i < mapped.size(); i += kPolaritySampleStep)
   {

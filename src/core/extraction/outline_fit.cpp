@@ -68,7 +68,7 @@ double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, 
                       double tolerance, double part_shift)
 {
   std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
-  fitPartsWithinShare(scanner, mapped, part_shift, tolerance);
+  fitPartsWithinShare(prototype, scanner, mapped, part_shift, tolerance);
   return mappedOutlineSupport(scanner, mapped, prototype.outline().size(), tolerance);
 }
 

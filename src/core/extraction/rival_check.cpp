@@ -42,7 +42,7 @@ RivalVerdict verdictAt(const ExtractionInput& in, const Prototype& p, const std:
 {
   // The inner parts where the score counts them (outline_parts.h).
   std::vector<MappedPoint> mapped = mapOutline(p, table_to_image);
-  fitPartsWithinShare(in.scanner, mapped, in.params.part_shift, score_tolerance);
+  fitPartsWithinShare(p, in.scanner, mapped, in.params.part_shift, score_tolerance);
   return verifyAgainstRivals(in.scanner, mapped, rivals, table_to_image,
                              kRivalSearch * score_tolerance, kRivalApart * kRivalSearch * score_tolerance,
                              kMinRivalPoints);

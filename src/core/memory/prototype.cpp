@@ -7,6 +7,8 @@
 
 #include "amcr/base/errors.h"
 #include "amcr/base/parallel_for.h"
+#include "amcr/memory/edge_model.h"
+#include "amcr/scan/edge_thresholds.h"
 #include "amcr/scan/radial_scan.h"
 
 namespace amcr
@@ -15,6 +17,8 @@ namespace
 {
 constexpr float kMaxTableDistance = 127.f;  // the largest distance a uint8 in 0.5 px units holds
 constexpr double kOutlineSpacing = 2.0;     // px between resampled outline points
+constexpr int kMinTemplateChain = 8;        // px: shorter chains of a template's edge pixels are texture
+constexpr std::size_t kMinTemplatePoints = 24;  // a template's edge points: fewer fix no shape
 
 /// Foreground mask (255 = shape) of a silhouette of either polarity: the
 /// background is whichever value dominates the image border.
@@ -41,8 +45,13 @@ cv::Mat silhouetteMask(const cv::Mat& grey)
 }  // namespace
 
 Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, double edge_threshold,
-                     double blur_sigma, int table_stride, const std::string& instance)
-  : blur_sigma_(blur_sigma), stride_(table_stride), label_(label), instance_(instance.empty() ? label : instance)
+                     double blur_sigma, int table_stride, const std::string& instance, double edge_full_strength,
+                     bool keep_polarity)
+  : keep_polarity_(keep_polarity),
+    blur_sigma_(blur_sigma),
+    stride_(table_stride),
+    label_(label),
+    instance_(instance.empty() ? label : instance)
 {
   if (image.empty())
     throw MemoryError("prototype '" + label + "': the image is empty");
@@ -51,10 +60,15 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
   if (table_stride < 1 || table_stride > kMaxTableStride)
     throw ParameterError("parameter 'table_stride' = " + std::to_string(table_stride) + " is outside [1, " +
                          std::to_string(kMaxTableStride) + "]");
-  cv::Mat grey;
+  cv::Mat grey, alpha;
   try
   {
     grey = toGray8(image);
+    if (image.channels() == 4)
+    {
+      cv::extractChannel(image, alpha, 3);
+      alpha = toGray8(alpha);
+    }
   }
   catch (const InputError& e)
   {
@@ -65,12 +79,38 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
   if (hi - lo < 1.0)
     throw MemoryError("prototype '" + label + "' has no edges: the image is uniform");
   original_size_ = grey.size();
+  // An alpha channel opaque everywhere says nothing: the image is read as if it had none.
+  if (!alpha.empty() && cv::countNonZero(alpha < 128) == 0)
+    alpha.release();
 
+  const cv::Rect box = (alpha.empty() && isSilhouette(grey))
+                           ? readSilhouette(grey, size)
+                           : readTemplate(grey, alpha, size, edge_threshold, edge_full_strength);
+  const int margin = tableMargin(size);
+  const int w = mask_.cols - 2 * margin, h = mask_.rows - 2 * margin;
+
+  // Pixel-centre convention: table = (original - box.tl + 0.5) * s - 0.5 + margin.
+  const double sx = static_cast<double>(w) / box.width, sy = static_cast<double>(h) / box.height;
+  original_to_table_ = cv::Matx23d(sx, 0, (0.5 - box.x) * sx - 0.5 + margin,  //
+                                   0, sy, (0.5 - box.y) * sy - 0.5 + margin);
+  table_to_original_ = cv::Matx23d(1 / sx, 0, -original_to_table_(0, 2) / sx,  //
+                                   0, 1 / sy, -original_to_table_(1, 2) / sy);
+
+  cv::findNonZero(mask_, interior_);
+  if (interior_.empty())
+    throw MemoryError("prototype '" + label + "' has no edges after normalising to " + std::to_string(size) + " px");
+  buildTable(edge_threshold, edge_full_strength);
+  if (!isTemplate())
+    buildOutline();
+}
+
+cv::Rect Prototype::readSilhouette(const cv::Mat& grey, int size)
+{
   const cv::Mat full_mask = silhouetteMask(grey);
   std::vector<cv::Point> on;
   cv::findNonZero(full_mask, on);
   if (on.empty() || on.size() == full_mask.total())
-    throw MemoryError("prototype '" + label + "' has no edges: no shape against a background");
+    throw MemoryError("prototype '" + label_ + "' has no edges: no shape against a background");
   const cv::Rect box = cv::boundingRect(on);
 
   // Normalise: the shape's longer side becomes `size` px, with a margin so
@@ -84,22 +124,71 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
   cv::threshold(resized, resized, 127, 255, cv::THRESH_BINARY);
   mask_ = cv::Mat::zeros(h + 2 * margin, w + 2 * margin, CV_8UC1);
   resized.copyTo(mask_(cv::Rect(margin, margin, w, h)));
-
-  // Pixel-centre convention: table = (original - box.tl + 0.5) * s - 0.5 + margin.
-  const double sx = static_cast<double>(w) / box.width, sy = static_cast<double>(h) / box.height;
-  original_to_table_ = cv::Matx23d(sx, 0, (0.5 - box.x) * sx - 0.5 + margin,  //
-                                   0, sy, (0.5 - box.y) * sy - 0.5 + margin);
-  table_to_original_ = cv::Matx23d(1 / sx, 0, -original_to_table_(0, 2) / sx,  //
-                                   0, 1 / sy, -original_to_table_(1, 2) / sy);
-
-  cv::findNonZero(mask_, interior_);
-  if (interior_.empty())
-    throw MemoryError("prototype '" + label + "' has no edges after normalising to " + std::to_string(size) + " px");
-  buildTable(edge_threshold);
-  buildOutline();
+  return box;
 }
 
-cv::Mat Prototype::scanImage() const { return prepareScanImage(mask_, blur_sigma_); }
+cv::Rect Prototype::readTemplate(const cv::Mat& grey, const cv::Mat& alpha, int size, double edge_threshold,
+                                 double edge_full_strength)
+{
+  kind_ = PrototypeKind::kTemplate;
+  cv::Rect box(0, 0, grey.cols, grey.rows);
+  if (!alpha.empty())
+  {
+    std::vector<cv::Point> opaque;
+    cv::findNonZero(alpha >= 128, opaque);
+    if (opaque.empty())
+      throw MemoryError("prototype '" + label_ + "': its alpha channel is transparent everywhere");
+    box = cv::boundingRect(opaque);
+  }
+  const double scale = static_cast<double>(size) / std::max(box.width, box.height);
+  const int w = std::max(1, static_cast<int>(std::lround(box.width * scale)));
+  const int h = std::max(1, static_cast<int>(std::lround(box.height * scale)));
+  const int margin = tableMargin(size);
+  const int interpolation = scale < 1.0 ? cv::INTER_AREA : cv::INTER_LINEAR;
+  cv::Mat resized, padded;
+  cv::resize(grey(box), resized, cv::Size(w, h), 0, 0, interpolation);
+  // The template's border is no edge of the object: the margin repeats it.
+  cv::copyMakeBorder(resized, padded, margin, margin, margin, margin, cv::BORDER_REPLICATE);
+  template_scan_ = prepareScanImage(padded, blur_sigma_);
+
+  cv::Mat region;  // where edge points may lie: the alpha channel and 2 px around it, else everywhere
+  if (!alpha.empty())
+  {
+    cv::Mat resized_alpha;
+    cv::resize(alpha(box), resized_alpha, cv::Size(w, h), 0, 0, interpolation);
+    cv::threshold(resized_alpha, resized_alpha, 127, 255, cv::THRESH_BINARY);
+    mask_ = cv::Mat::zeros(padded.size(), CV_8UC1);
+    resized_alpha.copyTo(mask_(cv::Rect(margin, margin, w, h)));
+    cv::dilate(mask_, region, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
+  }
+  outline_ = templateEdgePoints(template_scan_, edge_threshold, edge_full_strength, kMinTemplateChain, region);
+  if (outline_.size() < kMinTemplatePoints)
+    throw MemoryError("prototype '" + label_ + "' is read as a grey template (not two grey levels) and has " +
+                      std::to_string(outline_.size()) + " edge points at edge_threshold " +
+                      std::to_string(edge_threshold) + " (at least " + std::to_string(kMinTemplatePoints) +
+                      " needed): too little contrast, or too small");
+  if (alpha.empty())
+  {
+    // The object is where its edges are: their convex hull, 2 px wider.
+    std::vector<cv::Point2f> points;
+    for (const OutlinePoint& o : outline_)
+      points.push_back(o.position);
+    std::vector<cv::Point2f> hull;
+    cv::convexHull(points, hull);
+    std::vector<cv::Point> polygon;
+    for (const cv::Point2f& p : hull)
+      polygon.emplace_back(cvRound(p.x), cvRound(p.y));
+    mask_ = cv::Mat::zeros(padded.size(), CV_8UC1);
+    cv::fillConvexPoly(mask_, polygon, cv::Scalar(255));
+    cv::dilate(mask_, mask_, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
+  }
+  return box;
+}
+
+cv::Mat Prototype::scanImage() const
+{
+  return isTemplate() ? template_scan_.clone() : prepareScanImage(mask_, blur_sigma_);
+}
 
 void Prototype::sizeNodes()
 {
@@ -111,9 +200,19 @@ void Prototype::sizeNodes()
 // by the scanner the V-particles use, in the smoothed mask: with stride 1 a
 // lookup equals a direct scan. Far from the outline the smoothed mask is
 // flat, so each ray leaps over the free space a distance transform gives.
-void Prototype::buildTable(double edge_threshold)
+void Prototype::buildTable(double edge_threshold, double edge_full_strength)
 {
-  const int cols = mask_.cols, rows = mask_.rows;
+  const cv::Mat scan_image = scanImage();
+  sizeNodes();
+  table_.assign(static_cast<std::size_t>(node_cols_) * node_rows_ * kDirectionBins, kNoEdge);
+  if (isTemplate())
+  {
+    // A template's table holds what the camera's scanner finds: the same
+    // thresholds, following the template's own contrast.
+    fillTable(RadialScanner(scan_image, EdgeThresholds(scan_image, edge_threshold, edge_full_strength),
+                            kMaxTableDistance + 2.f));
+    return;
+  }
   cv::Mat inside_distance, outside_distance, inverted;
   cv::distanceTransform(mask_, inside_distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   cv::bitwise_not(mask_, inverted);
@@ -128,10 +227,12 @@ void Prototype::buildTable(double edge_threshold)
   free_space -= static_cast<float>(reach + 2.5);
   cv::max(free_space, 0.0, free_space);
 
-  const cv::Mat scan_image = scanImage();
-  const RadialScanner scanner(scan_image, edge_threshold, kMaxTableDistance + 2.f, free_space);
-  sizeNodes();
-  table_.assign(static_cast<std::size_t>(node_cols_) * node_rows_ * kDirectionBins, kNoEdge);
+  fillTable(RadialScanner(scan_image, edge_threshold, kMaxTableDistance + 2.f, free_space));
+}
+
+void Prototype::fillTable(const RadialScanner& scanner)
+{
+  const int cols = mask_.cols, rows = mask_.rows;
   // A node sits at the centre of its stride x stride block of pixels.
   const float node_offset = 0.5f * static_cast<float>(stride_ - 1);
   float dir_x[kDirectionBins], dir_y[kDirectionBins];

@@ -29,6 +29,12 @@ std::vector<std::uint8_t> Prototype::toBytes() const
   out.put<std::int32_t>(mask_.rows);
   const cv::Mat mask = mask_.isContinuous() ? mask_ : mask_.clone();
   out.putBytes(mask.data, mask.total());
+  out.put<std::int32_t>(isTemplate() ? (keep_polarity_ ? 2 : 1) : 0);  // 2: a template that keeps its polarity
+  if (isTemplate())
+  {
+    const cv::Mat scan = template_scan_.isContinuous() ? template_scan_ : template_scan_.clone();
+    out.putBytes(scan.data, scan.total());
+  }
   putMatx(out, original_to_table_);
   putMatx(out, table_to_original_);
   out.put<std::uint64_t>(table_.size());
@@ -69,6 +75,16 @@ std::shared_ptr<const Prototype> Prototype::fromBytes(const std::string& label, 
     throw MemoryError("a table of " + std::to_string(cols) + " x " + std::to_string(rows) + " px");
   p->mask_.create(rows, cols, CV_8UC1);
   in.getBytes(p->mask_.data, p->mask_.total(), "the mask");
+  const auto kind = in.get<std::int32_t>("the kind");
+  if (kind < 0 || kind > 2)
+    throw MemoryError("a prototype kind of " + std::to_string(kind));
+  if (kind > 0)
+  {
+    p->kind_ = PrototypeKind::kTemplate;
+    p->keep_polarity_ = kind == 2;
+    p->template_scan_.create(rows, cols, CV_8UC1);
+    in.getBytes(p->template_scan_.data, p->template_scan_.total(), "the template");
+  }
   p->original_to_table_ = getMatx(in, "the affine to the table");
   p->table_to_original_ = getMatx(in, "the affine from the table");
   p->sizeNodes();

@@ -31,7 +31,7 @@ LoadedPrototype loadPrototypeFile(const std::string& path, const std::string& la
     }
     auto prototype = std::make_shared<const Prototype>(label, decodeImageFile(bytes, path), params.prototype_size,
                                                       params.edge_threshold, params.blur_sigma, params.table_stride,
-                                                      instance);
+                                                      instance, params.edge_full_strength, params.keep_polarity);
     const std::string not_written = cache.write(label, image_hash, key, *prototype);
     if (!not_written.empty())
       loaded.warnings.push_back("table cache: the table of '" + path + "' is not stored: " + not_written);

@@ -147,7 +147,8 @@ void PrototypeMemory::add(const std::string& label, const cv::Mat& image, const 
   const int stride = params.table_stride > 0 ? params.table_stride : table_stride_;
   checkTableBound(tableBytes(), 1, params.prototype_size, stride);
   append(std::make_shared<const Prototype>(label, image, params.prototype_size, params.edge_threshold,
-                                           params.blur_sigma, stride, instance));
+                                           params.blur_sigma, stride, instance, params.edge_full_strength,
+                                           params.keep_polarity));
 }
 
 void PrototypeMemory::append(std::shared_ptr<const Prototype> prototype)

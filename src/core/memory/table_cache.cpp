@@ -131,7 +131,8 @@ std::uint64_t tableCacheKey(std::uint64_t image_hash, const Params& params)
   key.addText("amcr prototype table").addValue(kTableFormatVersion).addText(CV_VERSION);
   key.addValue(image_hash);
   key.addValue(static_cast<std::int32_t>(params.prototype_size));
-  key.addValue(params.edge_threshold).addValue(params.blur_sigma);
+  key.addValue(params.edge_threshold).addValue(params.edge_full_strength).addValue(params.blur_sigma);
+  key.addValue(static_cast<std::int32_t>(params.keep_polarity ? 1 : 0));
   key.addValue(static_cast<std::int32_t>(params.table_stride));
   key.addValue(static_cast<std::int32_t>(kDirectionBins)).addValue(Prototype::kDistanceUnit);
   key.addValue(Prototype::kNoEdge);
