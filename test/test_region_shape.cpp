@@ -1,7 +1,8 @@
 // cutShape: a drawn shape under a known affine over clutter is cut from a
 // region around it (rectangle or polygon, clean or noisy, grey or colour)
-// close to the truth and builds a prototype; bad regions and images give
-// their reasons instead of a shape.
+// close to the truth and builds a prototype; a part with inner edges is cut
+// as a grey template too; bad regions and images give their reasons instead
+// of a shape.
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -17,6 +18,7 @@
 #include "amcr/memory/prototype.h"
 #include "amcr/memory/region_shape.h"
 #include "scene_drawing.h"
+#include "template_drawing.h"
 
 namespace
 {
@@ -106,6 +108,7 @@ void expectShape(const amcr::CutShape& cut, const std::vector<cv::Point2d>& trut
   ASSERT_TRUE(cut.ok()) << what << ": " << cut.why;
   ASSERT_EQ(cut.silhouette.type(), CV_8UC1) << what;
   ASSERT_EQ(cut.silhouette.size(), cut.bounds.size()) << what;
+  EXPECT_TRUE(cut.grey_template.empty()) << what << ": a plain shape has no inner edges";
   const Comparison c = compare(cut, truth, image_size);
   std::cout << "[ cut      ] " << what << ": IoU " << c.iou << ", area ratio " << c.area_ratio << "\n";
   EXPECT_TRUE(c.truth_inside) << what;
@@ -301,3 +304,53 @@ TEST(RegionShape, BadImagesSayWhy)
                 "4 channels");
 }
 }  // namespace
+
+// A part with inner edges (the drawn grey template's body, its disc and bar)
+// is cut as a grey template too: the prototype taught from the cut keeps the
+// disc's edge, which the silhouette of its outline does not have. A plain
+// shape is cut as a silhouette only, as before.
+TEST(RegionShape, APartWithInnerEdgesIsCutAsAGreyTemplate)
+{
+  amcr_test::Clutter clutter;
+  clutter.lines = 0;
+  clutter.noise_sigma = 2.0;
+  clutter.seed = 31;
+  const cv::Point2d template_centre(0.5 * (amcr_test::kTemplateSide - 1), 0.5 * (amcr_test::kTemplateSide - 1));
+  const amcr::Affine truth = amcr_test::makeAffine(template_centre, {320, 240}, 0.3, 1.0, 1.0, 0.0);
+  const cv::Mat image =
+      amcr_test::templateOverClutter(amcr_test::TemplateView::kPart, truth, clutter, 1).front();
+  const cv::Rect body = amcr_test::kTemplateBody;
+  const std::vector<cv::Point2d> corners = amcr_test::transformPoints(
+      truth, {cv::Point2d(body.x, body.y), cv::Point2d(body.br().x, body.y), cv::Point2d(body.br().x, body.br().y),
+              cv::Point2d(body.x, body.br().y)});
+  const amcr::CutShape cut = amcr::cutShape(image, regionAround(corners), amcr::Params());
+  ASSERT_TRUE(cut.ok()) << cut.why;
+  ASSERT_EQ(cut.grey_template.type(), CV_8UC4);
+  ASSERT_EQ(cut.grey_template.size(), cut.silhouette.size());
+  cv::Mat alpha;
+  cv::extractChannel(cut.grey_template, alpha, 3);
+  EXPECT_EQ(cv::countNonZero(alpha != cut.silhouette), 0) << "the alpha channel is the silhouette";
+
+  const amcr::Params params;
+  const amcr::Prototype taught("part", cut.prototypeImage(), params.prototype_size, params.edge_threshold,
+                               params.blur_sigma, 1, "", params.edge_full_strength);
+  ASSERT_TRUE(taught.isTemplate());
+  // The disc's centre in the table: from the image through the cut's box.
+  const cv::Point2d disc_in_image = amcr::applyAffine(truth, cv::Point2d(58, 58));
+  const cv::Point2d disc_in_cut = disc_in_image - cv::Point2d(cut.bounds.x, cut.bounds.y);
+  const cv::Matx23d& m = taught.originalToTable();
+  const cv::Point2d disc(m(0, 0) * disc_in_cut.x + m(0, 1) * disc_in_cut.y + m(0, 2),
+                         m(1, 0) * disc_in_cut.x + m(1, 1) * disc_in_cut.y + m(1, 2));
+  const double radius = 22.0 * m(0, 0);
+  int on_disc = 0;
+  for (const amcr::OutlinePoint& o : taught.outline())
+    on_disc += std::abs(cv::norm(cv::Point2d(o.position) - disc) - radius) <= 2.0 ? 1 : 0;
+  EXPECT_GE(on_disc, static_cast<int>(0.7 * M_PI * radius)) << "model points on the disc's edge (radius "
+                                                            << radius << " table px)";
+
+  // A plain shape (CutEachShape) has none: the silhouette is what is taught.
+  const DrawnScene plain = drawScene(ShapeId::kStar, 0.2, 1.0);
+  const amcr::CutShape star = amcr::cutShape(plain.image, regionAround(plain.truth), amcr::Params());
+  ASSERT_TRUE(star.ok()) << star.why;
+  EXPECT_EQ(star.prototypeImage().data, star.silhouette.data);
+}

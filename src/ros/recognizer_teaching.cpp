@@ -105,7 +105,7 @@ std::string RecognizerRos::teachShape(const amcr::TeachPrototype::Request& reque
     return cut.why;
   auto memory = state.memory ? std::make_shared<amcr::PrototypeMemory>(*state.memory)
                              : std::make_shared<amcr::PrototypeMemory>();
-  memory->add(request.label, cut.silhouette, state.params);  // MemoryError when the cut holds no usable shape
+  memory->add(request.label, cut.prototypeImage(), state.params);  // MemoryError when the cut holds no usable shape
   amcr::FilterMemory tables(state.params, std::move(memory));
 
   // Under the lock: the swap, unless the memory changed meanwhile.
@@ -113,7 +113,7 @@ std::string RecognizerRos::teachShape(const amcr::TeachPrototype::Request& reque
   PreparedSwap prepared;
   prepared.generation = state.generation;
   prepared.swap = [&] {
-    if (!saved.empty() && !cv::imwrite(saved, cut.silhouette))
+    if (!saved.empty() && !cv::imwrite(saved, cut.prototypeImage()))
       return "cannot write '" + saved + "'";
     try
     {
@@ -126,7 +126,7 @@ std::string RecognizerRos::teachShape(const amcr::TeachPrototype::Request& reque
       throw;
     }
     if (saved.empty())
-      taught_.push_back({request.label, cut.silhouette.clone()});
+      taught_.push_back({request.label, cut.prototypeImage().clone()});
     response.prototype_id = static_cast<int>(memory_->size()) - 1;
     return std::string();
   };

@@ -22,6 +22,12 @@
 // contour needs no erosion: it holds the outline's edge pixels, on average
 // half a px outside the true outline (the area 1-4 % above the truth on the
 // drawn shapes of test/test_region_shape.cpp).
+//
+// A shape with edges of its own inside its outline (a part's print, a
+// marker's cells: at least kMinInnerEdgePixels Canny pixels kInnerEdgeInset
+// px or more inside it) is also cut as a grey template: the image's grey
+// levels over the same box, the silhouette as its alpha channel, so that the
+// prototype taught from it keeps its inner edges (edge_model.h).
 #pragma once
 
 #include <string>
@@ -49,6 +55,10 @@ constexpr double kMinRegionShare = 0.02;
 constexpr double kMinShapeArea = 64.0;
 /// Margin of empty pixels around the shape in the cut silhouette, px.
 constexpr int kSilhouetteMargin = 8;
+/// Px inside the outline from which an edge is the shape's own, not its outline's.
+constexpr int kInnerEdgeInset = 3;
+/// Least Canny pixels inside the outline that make the cut a grey template.
+constexpr int kMinInnerEdgePixels = 24;
 
 /// The 4 corners of the rectangle at (x, y) (its top left corner) of
 /// `width` x `height`, input px: a region for cutShape().
@@ -63,10 +73,16 @@ struct CutShape
   /// Where the silhouette lies in the input image, px (may reach past the
   /// image's border by the margin).
   cv::Rect bounds;
+  /// When the shape has inner edges: the image's grey levels over `bounds`
+  /// (its border repeated past the image's) with the silhouette as alpha,
+  /// CV_8UC4 (BGRA); else empty.
+  cv::Mat grey_template;
   /// Empty on success; otherwise a sentence saying why no shape was cut.
   std::string why;
 
   bool ok() const { return why.empty(); }
+  /// What a prototype is taught from: the grey template when there is one, else the silhouette.
+  const cv::Mat& prototypeImage() const { return grey_template.empty() ? silhouette : grey_template; }
 };
 
 /// Cuts the shape enclosed by edges inside `region` (a polygon of at least 3

@@ -126,6 +126,23 @@ CutShape outsideImage(const cv::Size& size)
   return failure("the region lies outside the image (" + std::to_string(size.width) + " x " +
                  std::to_string(size.height) + " px)");
 }
+
+/// The image's grey levels over `bounds` (its border repeated where the box
+/// reaches past it) with `alpha` as the alpha channel, CV_8UC4.
+cv::Mat greyTemplate(const cv::Mat& image, const cv::Rect& bounds, const cv::Mat& alpha)
+{
+  const cv::Rect inside = bounds & cv::Rect(cv::Point(), image.size());
+  cv::Mat grey, padded;
+  if (image.channels() == 3)
+    cv::cvtColor(image(inside), grey, cv::COLOR_BGR2GRAY);
+  else
+    grey = image(inside);
+  cv::copyMakeBorder(grey, padded, inside.y - bounds.y, bounds.br().y - inside.br().y, inside.x - bounds.x,
+                     bounds.br().x - inside.br().x, cv::BORDER_REPLICATE);
+  cv::Mat bgra;
+  cv::merge(std::vector<cv::Mat>{padded, padded, padded, alpha}, bgra);
+  return bgra;
+}
 }  // namespace
 
 std::vector<cv::Point2f> rectangleRegion(double x, double y, double width, double height)
@@ -251,6 +268,13 @@ CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, 
   cut.silhouette = cv::Mat::zeros(cut.bounds.size(), CV_8UC1);
   fill(shape_box).copyTo(
       cut.silhouette(cv::Rect(kSilhouetteMargin, kSilhouetteMargin, shape_box.width, shape_box.height)));
+
+  // Edges of the shape's own, off its outline: taught as a grey template too.
+  cv::Mat inside;
+  cv::erode(fill, inside,
+            cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * kInnerEdgeInset + 1, 2 * kInnerEdgeInset + 1)));
+  if (cv::countNonZero(edges & inside) >= kMinInnerEdgePixels)
+    cut.grey_template = greyTemplate(image, cut.bounds, cut.silhouette);
   return cut;
 }
 }  // namespace amcr
