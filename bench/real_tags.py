@@ -26,11 +26,12 @@ import ctypes
 import ctypes.util
 import json
 import os
-import subprocess
 import sys
 
 import cv2
 import numpy as np
+
+from still_photo import parse_seeds, run_still
 
 PHOTO_DIR = "/usr/share/visp-images-data/ViSP-images/AprilTag"
 FAMILY = "tag36h11"
@@ -101,13 +102,6 @@ def read_truth(path):
     return {k: np.array(v) for k, v in truth.items()}
 
 
-def parse_seeds(text):
-    if "-" in text:
-        a, b = text.split("-")
-        return list(range(int(a), int(b) + 1))
-    return [int(v) for v in text.split(",")]
-
-
 def project(h, points):
     p = np.hstack([points, np.ones((len(points), 1))]) @ np.array(h).T
     return p[:, :2] / p[:, 2:3]
@@ -154,13 +148,7 @@ def main():
     results = []
     for seed in parse_seeds(args.seeds):
         output = os.path.join(args.out, "seed-%d.jsonl" % seed)
-        command = [os.path.join(args.bin, "amcr_offline"), "--prototypes", prototypes, "--input", photo,
-                   "--frames", str(args.frames), "--seed", str(seed), "--output", output]
-        if args.config:
-            command += ["--config", args.config]
-        subprocess.run(command, check=True, stderr=subprocess.DEVNULL)
-        frames = [json.loads(line) for line in open(output)]
-        results.append((seed, frames))
+        results.append((seed, run_still(args.bin, prototypes, photo, args.frames, seed, output, args.config)))
 
     # The corner order that suits most right reports (ViSP's detector numbers them its own way):
     # one of the 4 turns of the template's clockwise corners, or of the reversed order.

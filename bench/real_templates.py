@@ -17,11 +17,12 @@ and seed the first frame with a report, and at the last frame the template's cor
 import argparse
 import json
 import os
-import subprocess
 import sys
 
 import cv2
 import numpy as np
+
+from still_photo import parse_seeds, run_still
 
 DATA = "/usr/share/doc/opencv-doc/examples/data"
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -59,13 +60,6 @@ def corners(image):
     return np.float32([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]]).reshape(-1, 1, 2)
 
 
-def parse_seeds(text):
-    if "-" in text:
-        a, b = text.split("-")
-        return list(range(int(a), int(b) + 1))
-    return [int(v) for v in text.split(",")]
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
@@ -88,12 +82,7 @@ def main():
         truth_corners = cv2.perspectiveTransform(corners(template), truth).reshape(-1, 2)
         for seed in parse_seeds(args.seeds):
             output = os.path.join(folder, "seed-%d.jsonl" % seed)
-            command = [os.path.join(args.bin, "amcr_offline"), "--prototypes", prototypes, "--input", scene,
-                       "--frames", str(args.frames), "--seed", str(seed), "--output", output]
-            if args.config:
-                command += ["--config", args.config]
-            subprocess.run(command, check=True, stderr=subprocess.DEVNULL)
-            frames = [json.loads(line) for line in open(output)]
+            frames = run_still(args.bin, prototypes, scene, args.frames, seed, output, args.config)
             first = next((k for k, f in enumerate(frames) if f["objects"]), None)
             row = {"pair": name, "seed": seed, "first_report": first, "reported_at_end": False}
             if frames[-1]["objects"]:
