@@ -139,7 +139,7 @@ TEST_F(ParamsFile, EveryErrorGivesTheFileAndTheLine)
   expectAt("prototype_priors:\n  bat: 1\n  cup: -2\n", ":3: ", "the weight of 'cup' = -2 must be a finite number >= 0");
   expectAt("prototype_priors: {bat: 1,\n  cup: heavy}\n", ":2: ", "the weight of 'cup' must be a number");
   // A parameter that contradicts another: the line of the one in the file (no line before yaml-cpp).
-  expectAt("sigma_w: 6\nnum_v_particles: 2\n", ":2: ", "'min_support' = 3 is above 'num_v_particles' = 2");
+  expectAt("sigma_w: 6\nnum_v_particles: 1\n", ":2: ", "'min_support' = 2 is above 'num_v_particles' = 1");
   // The top level that is not a map (no line before yaml-cpp either).
   expectAt("\n- sigma_w\n- 6\n", ":2: ", "not a map of name: value");
   expectAt("sigma_w: 6\n[a]: 1\n", ":2: ", "a key must be a name");

@@ -146,7 +146,7 @@ struct Params
   double cluster_radius = 6.0;        ///< M-cluster radius, prototype px [0.5, 100]
   double cluster_min_share = 0.3;     ///< share of a V's M-particles its cluster needs [0, 1]
   double group_tolerance = 8.0;       ///< V-particles agree when they map within this, working px [0.5, 200]
-  int min_support = 3;                ///< V-particles an object needs [1, 5000]
+  int min_support = 2;                ///< V-particles an object needs [1, 5000]
   int refine_iterations = 5;          ///< outline-to-edge refinement passes of the affine [0, 100]
   double refine_search = 6.0;         ///< search along the outline normal for an edge, working px [0, 100]
   bool fit_homography = true;         ///< after the affine, fit a homography and use it when the outline demands it
