@@ -115,7 +115,7 @@ TEST(GreyTemplates, FoundInEveryTurn)
   {
     const double turn = 15.0 * k;
     const std::uint64_t seed = 1 + k % 3;
-    const amcr::Affine truth = partAt(turn, {300 + 3 * (k % 5), 240 - 2 * (k % 4)});
+    const amcr::Affine truth = partAt(turn, cv::Point2d(300 + 3 * (k % 5), 240 - 2 * (k % 4)));
     const Outcome o = run(partFrames(TemplateView::kPart, truth, 700 + k), truth, memory, seed);
     found += o.right_at_end ? 1 : 0;
     if (o.right_at_end)
