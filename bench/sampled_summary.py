@@ -138,12 +138,13 @@ def markdown(summary, tag, config):
     return "\n".join(lines) + "\n"
 
 
-def write_summary(out, tag, config, summary):
-    """<out>/summary-<tag>.md and .json; returns the markdown."""
+def write_summary(out, tag, config, summary, name=None):
+    """<out>/summary-<name>.md and .json (`name` defaults to the tag); returns the markdown."""
     text = markdown(summary, tag, config)
-    with open(os.path.join(out, "summary-%s.md" % tag), "w") as f:
+    name = name or tag
+    with open(os.path.join(out, "summary-%s.md" % name), "w") as f:
         f.write(text)
-    with open(os.path.join(out, "summary-%s.json" % tag), "w") as f:
+    with open(os.path.join(out, "summary-%s.json" % name), "w") as f:
         json.dump(finite({"tag": tag, "config": config, "suites": summary}), f, indent=1)
         f.write("\n")
     return text
