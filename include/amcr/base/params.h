@@ -161,7 +161,8 @@ struct Params
   /// Share of the outline points that tell the prototype from its generic
   /// rivals (an ellipse, its convex hull, its rectangle, a pair of lines)
   /// that must lie on image edges for a new object's report (a tracked one
-  /// keeps its track on its score) [0, 1]; 0 = no such check (generic_rivals.h).
+  /// until it has missed 0.65 of it in 10 reports in a row) [0, 1]; 0 = no
+  /// such check (generic_rivals.h).
   double rival_part_support = 0.45;
   /// How far an inner part of a prototype's outline (a hole's outline) may
   /// move and scale on its own before the score counts it, as a share of the

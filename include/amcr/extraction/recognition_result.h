@@ -42,6 +42,10 @@ struct RecognizedObject
   /// Share of the prototype's outline found on image edges after the fit
   /// (the homography's when homography_valid, else the affine's), in [0, 1].
   double score = 0.0;
+  /// Of the outline points that tell the prototype from the simpler shapes
+  /// that could explain it (generic_rivals.h), the share on edges; 1 when it
+  /// has none to tell.
+  double rival_support = 1.0;
   int support = 0;  ///< V-particles that agree on this object
   Affine image_to_prototype;  ///< input px -> original prototype px
   Affine prototype_to_image;  ///< original prototype px -> input px

@@ -36,6 +36,9 @@ struct LifecycleRule
   int max_objects = 16;     ///< tracks kept at once, coasting ones included
   double min_overlap = 0.3; ///< outline overlap (intersection over union) that continues a track
   double hold_score = 0.75; ///< score a confirmed object needs to be held (params.decision_threshold)
+  /// rival_support below which a report of a track counts as a rival miss
+  /// (kKeepTrackRatio of params.rival_part_support)
+  double rival_keep_support = 0.29;
 
   LifecycleRule() = default;
   explicit LifecycleRule(const Params& params);
@@ -49,6 +52,9 @@ struct Track
   int reports = 0;          ///< frames in which it was reported
   int misses = 0;           ///< frames in a row without a report (coasting)
   bool followed = false;    ///< the tracker moved it into the current frame
+  /// Reports in a row whose rival_support was below rule.rival_keep_support:
+  /// after kRivalGraceFrames of them the track is no longer reported.
+  int rival_misses = 0;
 };
 
 class TrackRegistry

@@ -91,11 +91,13 @@ void report(const Params& params, const TrackRegistry& registry, std::vector<Can
     int support = candidate.adopted ? 1 : params.min_support;
     if (track)
       support = track->object.state == ObjectState::kTentative ? 1 : 0;
-    // A new object must explain its distinguishing parts (generic_rivals.h);
-    // a tracked one passed that check when it started, and keeps its track
-    // on the score's hysteresis alone (a moving part blurs them for a while).
-    if (c.score < threshold || c.support < support || (!track && !passesRivals(params, candidate, false)) ||
-        (!track && !registry.hasRoom(new_tracks)))
+    // A new object must explain its distinguishing parts (generic_rivals.h).
+    // A tracked one passed that check when it started; it keeps its track
+    // while they drop below the check's hysteresis for a few frames (a moving
+    // part blurs them for a while), not for kRivalGraceFrames in a row.
+    const bool rivals = track ? (passesRivals(params, candidate, true) || track->rival_misses < kRivalGraceFrames)
+                              : passesRivals(params, candidate, false);
+    if (c.score < threshold || c.support < support || !rivals || (!track && !registry.hasRoom(new_tracks)))
       continue;
     bool suppressed = false;
     for (const auto& kept : extraction.objects)

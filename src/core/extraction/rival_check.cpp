@@ -160,6 +160,7 @@ void verifyRivals(const ExtractionInput& in, std::vector<Candidate>& candidates)
         composeHomography(liftAffine(in.memory[prototype].tableToOriginal()), candidate.object.homography);
     const RivalVerdict verdict = rivalVerdict(in, prototype, table_to_image, candidate.score_tolerance);
     candidate.rival_support = verdict.support;
+    candidate.object.rival_support = verdict.support;
   });
 }
 

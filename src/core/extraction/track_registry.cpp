@@ -5,6 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "extraction_steps.h"
+
 namespace amcr
 {
 namespace
@@ -67,6 +69,7 @@ LifecycleRule::LifecycleRule(const Params& params)
   , recall_frames(params.recall_frames)
   , max_objects(params.max_objects)
   , hold_score(params.decision_threshold)
+  , rival_keep_support(extraction_steps::kKeepTrackRatio * params.rival_part_support)
 {
 }
 
@@ -162,6 +165,7 @@ void TrackRegistry::assign(std::vector<RecognizedObject>& objects, const cv::Siz
                                                         : ObjectState::kConfirmed;
     track.object = object;
     track.followed = false;
+    track.rival_misses = object.rival_support < rule_.rival_keep_support ? track.rival_misses + 1 : 0;
     next.push_back(std::move(track));
   }
   // The tracks no object continued coast, until they are lost.
