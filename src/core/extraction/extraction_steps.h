@@ -31,9 +31,6 @@ struct Candidate
   Affine table_to_image;         // the fitted affine, table px -> input px
   double score_tolerance = 0.0;  // px: the score's tolerance at the object's size
   bool adopted = false;          // took over a look-alike's V-particles (adoptSupport)
-  // Share of the outline points that tell the prototype from its generic
-  // rivals found on edges (generic_rivals.h; 1 when not checked).
-  double rival_support = 1.0;
 };
 
 /// Where the fit of one prototype starts: a group's affine and the affines

@@ -159,14 +159,13 @@ void verifyRivals(const ExtractionInput& in, std::vector<Candidate>& candidates)
     const Homography table_to_image =
         composeHomography(liftAffine(in.memory[prototype].tableToOriginal()), candidate.object.homography);
     const RivalVerdict verdict = rivalVerdict(in, prototype, table_to_image, candidate.score_tolerance);
-    candidate.rival_support = verdict.support;
     candidate.object.rival_support = verdict.support;
   });
 }
 
 bool passesRivals(const Params& params, const Candidate& candidate, bool tracked)
 {
-  return candidate.rival_support >= params.rival_part_support * (tracked ? kKeepTrackRatio : 1.0);
+  return candidate.object.rival_support >= params.rival_part_support * (tracked ? kKeepTrackRatio : 1.0);
 }
 }  // namespace extraction_steps
 }  // namespace amcr
