@@ -86,7 +86,9 @@ def black_square_corners(cells):
 
 
 def read_truth(path):
-    """Tag id -> its 4 corners (x, y); the file gives ViSP's image points, (row, column)."""
+    """Tag id -> its 4 corners (x, y), pixel centres at whole numbers as everywhere in amcr. The file
+    gives ViSP's image points, (row, column), as the AprilTag library computes them: with a pixel's
+    centre at +0.5 (AprilRobotics/apriltag issue #121), so half a pixel is taken off both."""
     truth, tag = {}, None
     with open(path) as f:
         for line in f:
@@ -98,7 +100,7 @@ def read_truth(path):
                 truth[tag] = []
             else:
                 row, column = (float(v) for v in line.split())
-                truth[tag].append([column, row])
+                truth[tag].append([column - 0.5, row - 0.5])
     return {k: np.array(v) for k, v in truth.items()}
 
 
