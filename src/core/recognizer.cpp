@@ -146,6 +146,7 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   // The life cycle (track_registry.h), then attention: what is held is
   // explained, and V-resampling looks elsewhere.
   result.objects = std::move(extraction.objects);
+  result.objects_over_limit = extraction.over_limit;
   verified_ = std::move(extraction.verified);
   if (!params_.optical_flow)
     tracker_.holdStill();

@@ -196,6 +196,7 @@ int run(const RunnerOptions& options)
     overlay = std::make_unique<OverlayVideo>(options.overlay, source->fps() > 0.0 ? source->fps() : kDefaultOverlayFps);
 
   long processed = 0;
+  long over_limit_frames = 0;  // frames with objects found but not reported (max_objects)
   Frame frame;
   while (source->next(frame))
   {
@@ -215,12 +216,20 @@ int run(const RunnerOptions& options)
       throw amcr::InputError("frame " + std::to_string(frame.index) + " (" + frame.name + "): " + e.what());
     }
     writeJsonLine(*out, frameJson(frame.index, result), destination);
+    if (result.objects_over_limit > 0 && over_limit_frames++ == 0)
+      reportWarning("frame " + std::to_string(frame.index) + ": " + std::to_string(result.objects_over_limit) +
+                    " objects found were not reported: max_objects (" + std::to_string(params.max_objects) +
+                    ") tracks are kept already; raise max_objects to see them");
     if (overlay)
       overlay->write(amcr::drawOverlay(frame.image, recognizer, result));
     ++processed;
   }
   if (overlay)
     overlay->close();
+  if (over_limit_frames > 0)
+    reportWarning("objects found were not reported in " + std::to_string(over_limit_frames) + " of " +
+                  std::to_string(processed) + " frames: max_objects (" + std::to_string(params.max_objects) +
+                  ") was reached");
   const std::string incomplete = source->incomplete();
   if (processed == 0)
     throw std::runtime_error(incomplete.empty() ? "no frame of input '" + options.input + "' could be read"

@@ -265,9 +265,15 @@ bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_ove
     frame.memory = memory_;
     frame.restarted = fresh_;
     fresh_ = false;
-    stats_.processed(frame.message, {frame.result.converged_v_particles, params_.num_v_particles,
-                                     frame.result.flow_failures, params_.frame_budget_ms,
-                                     frame.result.mean_m_particles});
+    RecognizerStats::FilterState state;  // by name: positional braces once swapped the budget and the M-particle mean
+    state.converged_v_particles = frame.result.converged_v_particles;
+    state.num_v_particles = params_.num_v_particles;
+    state.flow_failures = frame.result.flow_failures;
+    state.mean_m_particles = frame.result.mean_m_particles;
+    state.budget_ms = params_.frame_budget_ms;
+    state.objects_over_limit = frame.result.objects_over_limit;
+    state.max_objects = params_.max_objects;
+    stats_.processed(frame.message, state);
     if (draw_overlay)
     {
       try

@@ -38,6 +38,8 @@ void RecognizerStats::processed(const amcr::Recognitions& out, const FilterState
   mean_m_particles_ = state.mean_m_particles;
   num_v_ = state.num_v_particles;
   flow_failures_ += state.flow_failures;
+  over_limit_ += state.objects_over_limit;
+  max_objects_ = state.max_objects;
   budget_ms_ = state.budget_ms;
   leading_.clear();
   for (const auto& o : out.objects)
@@ -80,10 +82,15 @@ void RecognizerStats::report(diagnostic_updater::DiagnosticStatusWrapper& status
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no input image for " + std::to_string(stale_after) + " s");
   else if (skipped_ > skipped_at_last_report_)
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "input images skipped (see the log)");
+  else if (over_limit_ > over_limit_at_last_report_)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                   "objects found but not reported: max_objects (" + std::to_string(max_objects_) +
+                       ") tracks are kept; raise ~max_objects");
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::OK,
                    leading_.empty() ? "recognizing: nothing yet" : "recognized: " + leading_);
   skipped_at_last_report_ = skipped_;
+  over_limit_at_last_report_ = over_limit_;
 
   status.add("prototypes", prototypes_);
   status.add("frames received", received_);
@@ -98,6 +105,7 @@ void RecognizerStats::report(diagnostic_updater::DiagnosticStatusWrapper& status
   status.add("frame budget (ms)", budget_ms_ > 0.0 ? std::to_string(budget_ms_) : std::string("none"));
   status.add("frame budget used, mean (%)", budget_ms_ > 0.0 ? 100.0 * mean_ms_ / budget_ms_ : 0.0);
   status.add("V-particles re-seeded by failed flows", flow_failures_);
+  status.add("objects not reported over max_objects", over_limit_);
   status.add("converged V-particles", std::to_string(converged_) + " of " + std::to_string(num_v_));
   status.add("M-particles per V-particle (mean)", static_cast<int>(std::lround(mean_m_particles_)));
   status.add("leading hypotheses", leading_.empty() ? "none" : leading_);

@@ -31,6 +31,8 @@ public:
     int flow_failures = 0;     ///< V-particles re-seeded because their flow failed
     double mean_m_particles = 0.0;  ///< M-particles per V-particle, mean (KLD-sampling)
     double budget_ms = 0.0;    ///< ~frame_budget_ms, 0 = none
+    int objects_over_limit = 0;  ///< objects found but not reported: max_objects tracks were kept
+    int max_objects = 0;         ///< ~max_objects
   };
   void processed(const amcr::Recognitions& out, const FilterState& state);
   void overlayDrawn();
@@ -39,7 +41,8 @@ public:
   void setPrototypes(std::size_t count, const std::string& problem);
 
   /// The status: ERROR without prototypes, WARN when no image arrived for
-  /// `stale_after` s or some were skipped since the last report, OK otherwise.
+  /// `stale_after` s, some were skipped since the last report, or objects
+  /// found since then were not reported (max_objects), OK otherwise.
   void report(diagnostic_updater::DiagnosticStatusWrapper& status, double stale_after = 5.0);
 
 private:
@@ -55,6 +58,8 @@ private:
   double mean_m_particles_ = 0.0;
   double iterations_mean_ = 0.0, budget_ms_ = 0.0;
   long flow_failures_ = 0;
+  long over_limit_ = 0, over_limit_at_last_report_ = 0;
+  int max_objects_ = 0;
   std::string leading_;
   std::size_t prototypes_ = 0;
   std::string prototype_problem_;

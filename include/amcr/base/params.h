@@ -177,7 +177,7 @@ struct Params
   /// Frames after its end during which a lost track's id is given back to an
   /// object of its label found where it was last [0, 10000]; 0 = never.
   int recall_frames = 30;
-  int max_objects = 16;      ///< tracks kept at once; no new object is reported beyond [1, 256]
+  int max_objects = 64;      ///< tracks kept at once; no new object is reported beyond [1, 256]
   int held_v_particles = 3;  ///< V-particles a held object keeps at V-resampling [0, 5000]
   double scene_prior_share = 0.25;  ///< share of new M-particles drawn in the held objects' prototypes [0, 1]
 

@@ -43,6 +43,9 @@ struct Extraction
   /// or not, best score first: what a diagnosis of a miss reads (the
   /// benchmark's recall funnel), never fed back.
   std::vector<RecognizedObject> verified;
+  /// New objects that passed every check but were not reported: max_objects
+  /// tracks were kept already.
+  int over_limit = 0;
   ExtractionFeedback feedback;
 };
 

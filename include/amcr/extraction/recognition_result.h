@@ -99,6 +99,9 @@ struct RecognitionResult
   int flow_failures = 0;      ///< V-particles re-seeded because their optical flow failed
   int converged_v_particles = 0;  ///< V-particles with a focused M-cluster
   double mean_m_particles = 0.0;  ///< M-particles per V-particle, mean (KLD-sampling adapts it)
+  /// New objects found in this step (every check passed) but not reported:
+  /// params.max_objects tracks were kept already. Not 0: raise max_objects.
+  int objects_over_limit = 0;
   /// Only objects at or above the decision threshold, best score first (of
   /// equal scores, the one found first); no two outlines overlap by more
   /// than 0.3 (intersection over union).

@@ -33,7 +33,7 @@ struct LifecycleRule
   int confirm_frames = 3;   ///< reports that make a tentative object confirmed
   int lost_frames = 5;      ///< frames in a row without a report that end a track
   int recall_frames = 30;   ///< frames an ended track may still be continued (its id given back); 0 = never
-  int max_objects = 16;     ///< tracks kept at once, coasting ones included
+  int max_objects = 64;     ///< tracks kept at once, coasting ones included
   double min_overlap = 0.3; ///< outline overlap (intersection over union) that continues a track
   double hold_score = 0.75; ///< score a confirmed object needs to be held (params.decision_threshold)
   /// rival_support below which a report of a track counts as a rival miss

@@ -71,7 +71,8 @@ std::vector<LeadingHypothesis> leadingHypotheses(const ExtractionInput& in, cons
 }
 
 /// Reports what passes the decision threshold; of two overlapping objects
-/// the better one; a new object only while the registry has room (max_objects).
+/// the better one; a new object only while the registry has room
+/// (max_objects), counting those it had none for.
 void report(const Params& params, const TrackRegistry& registry, std::vector<Candidate>& candidates,
             Extraction& extraction)
 {
@@ -97,13 +98,18 @@ void report(const Params& params, const TrackRegistry& registry, std::vector<Can
     // part blurs them for a while), not for kRivalGraceFrames in a row.
     const bool rivals = track ? (passesRivals(params, candidate, true) || track->rival_misses < kRivalGraceFrames)
                               : passesRivals(params, candidate, false);
-    if (c.score < threshold || c.support < support || !rivals || (!track && !registry.hasRoom(new_tracks)))
+    if (c.score < threshold || c.support < support || !rivals)
       continue;
     bool suppressed = false;
     for (const auto& kept : extraction.objects)
       suppressed = suppressed || outlineOverlap(c.outline, kept.outline) > kSameObjectOverlap;
     if (suppressed)
       continue;
+    if (!track && !registry.hasRoom(new_tracks))
+    {
+      ++extraction.over_limit;  // said, not dropped in silence (RecognitionResult::objects_over_limit)
+      continue;
+    }
     new_tracks += track ? 0 : 1;
     extraction.objects.push_back(std::move(candidate.object));
     extraction.feedback.object_v_particles.push_back(std::move(candidate.v_particles));
