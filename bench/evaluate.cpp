@@ -58,6 +58,7 @@
 #include "baselines/generalized_hough.h"
 #include "baselines/hu_moments.h"
 #include "baselines/orb_homography.h"
+#include "baselines/prototype_image.h"
 #ifdef AMCR_HAVE_LINE2D
 #include "baselines/line2d.h"
 #endif
@@ -187,7 +188,8 @@ Options parse(int argc, char** argv)
 
 // The memory of a prototype folder: its loose .png files (label: the file name without extension)
 // and, one level down, one sub-directory per label (label: the sub-directory's name), every .png in
-// it an instance of that label. Sorted by path.
+// it an instance of that label. Sorted by path. Each is a silhouette or a grey template as amcr
+// reads it (baselines/prototype_image.h).
 std::vector<PrototypeImage> loadPrototypes(const std::string& dir)
 {
   std::vector<std::pair<std::string, std::string>> files;  // (path, label)
@@ -206,7 +208,7 @@ std::vector<PrototypeImage> loadPrototypes(const std::string& dir)
   std::sort(files.begin(), files.end());
   std::vector<PrototypeImage> prototypes;
   for (const auto& [path, label] : files)
-    prototypes.push_back({label, cv::imread(path, cv::IMREAD_GRAYSCALE)});
+    prototypes.push_back(amcr_bench::readPrototypeImage(label, path));
   return prototypes;
 }
 
