@@ -4,12 +4,15 @@
 //   amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght,line2d,sc]
 //                 [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N] [--prototypes DIR]
 //                 [--every METHOD=N,...] [--target-size MIN,MAX] [--anisotropy MAX]
-//                 [--line2d-threshold PERCENT]
+//                 [--line2d-threshold PERCENT] [--line2d-reports N]
 //
 // The memory is <suite>/prototypes unless --prototypes names another folder (the `memory-growth`
 // suite runs the same sequences once per memory, prototypes-3 ... prototypes-70). For the baselines,
 // the folder holds loose .png files (label: the file name) and/or one sub-directory per label, each
-// .png in it an instance of that label (`within-class-1330`, `within-class-85`).
+// .png in it an instance of that label (`within-class-1330`, `within-class-85`). A file that amcr
+// reads as a grey template (an alpha channel short of opaque, or more than two grey levels) is one
+// for the baselines too: LINE-2D and shape contexts take its grey image and inner edges, the others
+// its region as a silhouette.
 //
 // Writes <out>/<sequence>.<method>.jsonl, one line per frame run:
 //   {"frame": k, "time_ms": t, "objects": [{"label": ..., "score": s,
@@ -32,7 +35,8 @@
 // box in the frames, px; default 110,260) and --anisotropy (the largest ratio of the singular values
 // of a target's affine; default 1.7, the aspect and shear of the `paper` suites; 3 for `oblique`).
 // --line2d-threshold overrides LINE-2D's similarity threshold (to choose it on sequences of a seed
-// that the benchmark does not score).
+// that the benchmark does not score); --line2d-reports its most reports per frame (5), for frames
+// that show more objects (bench/real_tags.py: 12 tags).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -58,6 +62,7 @@
 #include "baselines/generalized_hough.h"
 #include "baselines/hu_moments.h"
 #include "baselines/orb_homography.h"
+#include "baselines/prototype_image.h"
 #ifdef AMCR_HAVE_LINE2D
 #include "baselines/line2d.h"
 #endif
@@ -96,6 +101,7 @@ struct Options
   double min_target_size = 110, max_target_size = 260;  ///< longer side of a target in the frames, px
   double max_anisotropy = 1.7;
   float line2d_threshold = 0;  ///< 0: Line2dConfig's
+  int line2d_reports = 0;      ///< 0: Line2dConfig's
 };
 
 std::vector<std::string> split(const std::string& text)
@@ -114,7 +120,7 @@ std::vector<std::string> split(const std::string& text)
             << "usage: amcr_evaluate --suite DIR --out DIR [--config FILE] [--methods amcr,orb,hu,ght,line2d,sc]\n"
             << "                     [--seed N] [--ght-frames 9,29,59,-1] [--ght-sequences N] [--prototypes DIR]\n"
             << "                     [--every METHOD=N,...] [--target-size MIN,MAX] [--anisotropy MAX]\n"
-            << "                     [--line2d-threshold PERCENT]\n";
+            << "                     [--line2d-threshold PERCENT] [--line2d-reports N]\n";
   std::exit(2);
 }
 
@@ -170,6 +176,11 @@ Options parse(int argc, char** argv)
       if ((o.line2d_threshold = std::atof(value.c_str())) <= 0 || o.line2d_threshold > 100)
         usage("--line2d-threshold wants a similarity in (0, 100] percent, got " + value);
     }
+    else if (key == "--line2d-reports")
+    {
+      if ((o.line2d_reports = std::atoi(value.c_str())) < 1)
+        usage("--line2d-reports wants a number of reports >= 1, got " + value);
+    }
     else if (key == "--anisotropy")
     {
       if ((o.max_anisotropy = std::atof(value.c_str())) < 1)
@@ -187,7 +198,8 @@ Options parse(int argc, char** argv)
 
 // The memory of a prototype folder: its loose .png files (label: the file name without extension)
 // and, one level down, one sub-directory per label (label: the sub-directory's name), every .png in
-// it an instance of that label. Sorted by path.
+// it an instance of that label. Sorted by path. Each is a silhouette or a grey template as amcr
+// reads it (baselines/prototype_image.h).
 std::vector<PrototypeImage> loadPrototypes(const std::string& dir)
 {
   std::vector<std::pair<std::string, std::string>> files;  // (path, label)
@@ -206,7 +218,7 @@ std::vector<PrototypeImage> loadPrototypes(const std::string& dir)
   std::sort(files.begin(), files.end());
   std::vector<PrototypeImage> prototypes;
   for (const auto& [path, label] : files)
-    prototypes.push_back({label, cv::imread(path, cv::IMREAD_GRAYSCALE)});
+    prototypes.push_back(amcr_bench::readPrototypeImage(label, path));
   return prototypes;
 }
 
@@ -314,6 +326,8 @@ std::unique_ptr<Method> makeMethod(const std::string& name, const Options& o, co
     config.max_anisotropy = o.max_anisotropy;
     if (o.line2d_threshold > 0)
       config.threshold = o.line2d_threshold;
+    if (o.line2d_reports > 0)
+      config.max_reports = o.line2d_reports;
     auto line2d = std::make_unique<amcr_bench::Line2d>(prototypes, config);
     init = "\"templates\": " + std::to_string(line2d->templateCount());
     return line2d;

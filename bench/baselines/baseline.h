@@ -1,6 +1,6 @@
 // What every recognizer of the benchmark gets and answers: the same prototypes
-// (white silhouette on black, as in the memory folder) and one grey frame at a
-// time; per frame a list of detections, best first.
+// (a white silhouette on black, or a grey template, as in the memory folder) and
+// one grey frame at a time; per frame a list of detections, best first.
 #pragma once
 
 #include <string>
@@ -13,8 +13,20 @@ namespace amcr_bench
 {
 struct PrototypeImage
 {
+  PrototypeImage() = default;
+  PrototypeImage(std::string label_, cv::Mat mask_, cv::Mat grey_ = cv::Mat())
+    : label(std::move(label_)), mask(std::move(mask_)), grey(std::move(grey_))
+  {
+  }
+
   std::string label;
-  cv::Mat mask;  ///< 8-bit, shape > 127, as the file holds it
+  /// 8-bit, shape > 127: a silhouette as the file holds it; for a grey template its region (255 where
+  /// the template is), the shape that the methods which know only silhouettes take.
+  cv::Mat mask;
+  /// A grey template (amcr reads the file as one: prototype_file.h) as 8-bit grey, the size of `mask`;
+  /// empty for a silhouette.
+  cv::Mat grey;
+  bool isTemplate() const { return !grey.empty(); }
 };
 
 struct Detection

@@ -47,6 +47,39 @@ std::vector<cv::Matx22d> templateStretches(const Line2dConfig& c)
   return stretches;
 }
 
+/// `grey` in `region` (CV_8UC1, non-zero where the template is), and elsewhere the grey of the nearest region
+/// pixel: warped onto a canvas, the template shows no edge at its region's border.
+cv::Mat extendedOverRegion(const cv::Mat& grey, const cv::Mat& region)
+{
+  if (cv::countNonZero(region) == static_cast<int>(region.total()))
+    return grey;
+  cv::Mat distance, nearest;  // nearest: each pixel's label, the label of its nearest region pixel
+  cv::distanceTransform(region == 0, distance, nearest, cv::DIST_L2, 5, cv::DIST_LABEL_PIXEL);
+  std::vector<unsigned char> grey_of_label(region.total() + 1, 0);
+  for (int y = 0; y < grey.rows; ++y)
+    for (int x = 0; x < grey.cols; ++x)
+      if (region.at<unsigned char>(y, x))
+        grey_of_label[nearest.at<int>(y, x)] = grey.at<unsigned char>(y, x);
+  cv::Mat extended(grey.size(), CV_8UC1);
+  for (int y = 0; y < grey.rows; ++y)
+    for (int x = 0; x < grey.cols; ++x)
+      extended.at<unsigned char>(y, x) = grey_of_label[nearest.at<int>(y, x)];
+  return extended;
+}
+
+/// Linemod takes a template's features only on its mask's outer ring (the mask less its 3 x 3 erosion). This
+/// mask is `region` in alternate 2 x 2 blocks: each of its pixels is on the ring, and stays so at half resolution
+/// (linemod halves the mask by nearest neighbour), so that the features may lie anywhere in the region.
+cv::Mat everywhereMask(const cv::Mat& region)
+{
+  cv::Mat mask = cv::Mat::zeros(region.size(), CV_8UC1);
+  for (int y = 0; y < region.rows; ++y)
+    for (int x = 0; x < region.cols; ++x)
+      if (region.at<unsigned char>(y, x) && (((x >> 1) + (y >> 1)) & 1))
+        mask.at<unsigned char>(y, x) = 255;
+  return mask;
+}
+
 /// LINE-2D as cv::linemod::getDefaultLINE() makes it (T = 5 and 8 px at full and half resolution, 63
 /// features), with the frame's gradient threshold of the configuration.
 cv::Ptr<cv::linemod::Detector> makeDetector(const Line2dConfig& c)
@@ -77,7 +110,8 @@ Line2d::Line2d(const std::vector<PrototypeImage>& prototypes, const Line2dConfig
 
   for (const PrototypeImage& p : prototypes)
     if (p.mask.empty() || cv::countNonZero(p.mask > 127) == 0)
-      throw std::invalid_argument("line2d: prototype '" + p.label + "' shows no silhouette (no pixel above 127)");
+      throw std::invalid_argument("line2d: prototype '" + p.label +
+                                  "' shows no silhouette or template region (no mask pixel above 127)");
   // Rendering and linemod's feature extraction take milliseconds per template: the prototypes are built in
   // parallel, each into a detector of its own (addTemplate changes the detector), then copied into one.
   const int n = static_cast<int>(prototypes.size());
@@ -109,12 +143,14 @@ Line2d::Line2d(const std::vector<PrototypeImage>& prototypes, const Line2dConfig
 
 Line2d::Model Line2d::build(const PrototypeImage& p, const std::string& class_id, cv::linemod::Detector& detector) const
 {
-  const cv::Mat silhouette = p.mask > 127;
+  const cv::Mat silhouette = p.mask > 127;  // a grey template's region
   const cv::Moments moments = cv::moments(silhouette, true);
   Model model{p.label, {moments.m10 / moments.m00, moments.m01 / moments.m00}, {}};
   std::vector<cv::Point> points, hull;  // the hull bounds each rendering's extent
   cv::findNonZero(silhouette, points);
   cv::convexHull(points, hull);
+  // A grey template is warped as it is, not printed: its grey carried past its region, which gives the mask.
+  const cv::Mat source = p.isTemplate() ? extendedOverRegion(p.grey, silhouette) : p.mask;
 
   const int rotations = std::max(1, static_cast<int>(std::lround(360.0 / config_.rotation_step)));
   // Room around the silhouette: the dilated mask, and linemod's 7x7 smoothing at half resolution.
@@ -125,7 +161,10 @@ Line2d::Model Line2d::build(const PrototypeImage& p, const std::string& class_id
   {
     // Resampled by area to the size first, so that the warps below only rotate and stretch (no aliasing).
     cv::Matx23d scaled_to_original, original_to_scaled;
-    const cv::Mat scaled = normalisedPrototype(p.mask, static_cast<int>(std::lround(size)), 0, scaled_to_original);
+    const int longer = static_cast<int>(std::lround(size));
+    const cv::Mat scaled = normalisedPrototype(source, longer, 0, scaled_to_original);
+    cv::Matx23d same_map;
+    const cv::Mat scaled_region = p.isTemplate() ? normalisedPrototype(silhouette, longer, 0, same_map) : cv::Mat();
     amcr::invertAffine(scaled_to_original, original_to_scaled);
     std::vector<cv::Point2d> hull_scaled;
     cv::transform(std::vector<cv::Point2d>(hull.begin(), hull.end()), hull_scaled, original_to_scaled);
@@ -148,11 +187,21 @@ Line2d::Model Line2d::build(const PrototypeImage& p, const std::string& class_id
                               static_cast<int>(std::ceil(y1 - y0)) + 2 * margin + 1);
 
         cv::Mat alpha, print, mask;
-        cv::warpAffine(scaled, alpha, to_source, canvas, cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0);
-        alpha.convertTo(print, CV_8U, (config_.ink - config_.paper) / 255.0, config_.paper);
-        cv::GaussianBlur(print, print, cv::Size(), config_.print_blur);
+        if (p.isTemplate())
+        {
+          // Its edges, inner ones included, are the features: anywhere in its region.
+          cv::warpAffine(scaled, print, to_source, canvas, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+          cv::warpAffine(scaled_region, alpha, to_source, canvas, cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0);
+          mask = everywhereMask(alpha > 127);
+        }
+        else
+        {
+          cv::warpAffine(scaled, alpha, to_source, canvas, cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0);
+          alpha.convertTo(print, CV_8U, (config_.ink - config_.paper) / 255.0, config_.paper);
+          cv::GaussianBlur(print, print, cv::Size(), config_.print_blur);
+          cv::dilate(alpha > 127, mask, dilation);
+        }
         cv::cvtColor(print, print, cv::COLOR_GRAY2BGR);  // the colour-gradient modality wants 3 channels
-        cv::dilate(alpha > 127, mask, dilation);
         View view{amcr::composeAffine(original_to_scaled, to_source), {}, size};
         // -1: fewer gradient features on the mask's outline than linemod takes (63; 31 at half resolution).
         if (detector.addTemplate({print}, class_id, mask, &view.box) >= 0)

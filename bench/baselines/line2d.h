@@ -1,8 +1,10 @@
 // Baseline: LINE-2D (Hinterstoisser et al., PAMI 2012), OpenCV contrib's cv::linemod with its default
 // LINE detector: quantised gradient orientations, spread and matched through response maps. It knows
 // no affine: the pose range is sampled by brute force, one template per prototype, size, rotation and
-// stretch, rendered as a print; a match's template gives the affine, up to the sampling steps and
-// linemod's 5 px position grid. Orientations count modulo 180 degrees: one print polarity finds both.
+// stretch, rendered as a print of a silhouette, or a grey template (prototype_image.h) warped as it is,
+// whose features then lie anywhere in its region, on its inner edges too; a match's template gives the
+// affine, up to the sampling steps and linemod's 5 px position grid. Orientations count modulo 180
+// degrees: one print polarity finds both.
 #pragma once
 
 #include <string>
@@ -45,6 +47,7 @@ struct Line2dConfig
   float weak_threshold = 60.f;
   double nms_share = 0.5;  ///< a match is dropped near a better one: centres closer than this x the smaller size
   int max_reports = 5;     ///< per frame
+  // A silhouette's print (a grey template is taken as it is):
   double ink = 40.0;       ///< the template's print, grey levels (dark on light; either polarity matches)
   double paper = 200.0;
   double print_blur = 1.0;  ///< Gaussian sigma of the print, template px
@@ -54,7 +57,7 @@ struct Line2dConfig
 class Line2d : public Method
 {
 public:
-  /// Throws std::invalid_argument naming a prototype without silhouette or without any template.
+  /// Throws std::invalid_argument naming a prototype without silhouette (or region) or without any template.
   Line2d(const std::vector<PrototypeImage>& prototypes, const Line2dConfig& config = Line2dConfig());
   std::string name() const override { return "line2d"; }
   /// Every frame on its own; an empty frame gives no detection.
@@ -72,7 +75,7 @@ private:
   struct Model
   {
     std::string label;
-    cv::Point2d centre;       ///< the silhouette's centroid, prototype px
+    cv::Point2d centre;       ///< the silhouette's (a grey template's region's) centroid, prototype px
     std::vector<View> views;  ///< by linemod template id
   };
   Model build(const PrototypeImage& prototype, const std::string& class_id, cv::linemod::Detector& detector) const;

@@ -1,6 +1,7 @@
 #include "shape_context.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -9,6 +10,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amcr/base/affine.h"
+#include "amcr/base/params.h"
+#include "amcr/memory/edge_model.h"
+#include "amcr/memory/prototype.h"
+#include "amcr/scan/radial_scan.h"
 #include "candidate_contours.h"
 
 namespace amcr_bench
@@ -68,6 +73,95 @@ std::vector<cv::Point2f> resampleOutline(const std::vector<cv::Point>& contour, 
   return points;
 }
 
+/// `count` of `points` spread over them: the one nearest their centroid, then each time the one farthest
+/// from those taken (farthest-point sampling); all of them when they are no more.
+std::vector<cv::Point2f> spreadOver(const std::vector<cv::Point2f>& points, int count)
+{
+  if (static_cast<int>(points.size()) <= count)
+    return points;
+  cv::Point2f centroid(0, 0);
+  for (const cv::Point2f& p : points)
+    centroid += p / static_cast<float>(points.size());
+  const auto squared = [](const cv::Point2f& d) { return d.x * d.x + d.y * d.y; };
+  std::size_t next = 0;
+  for (std::size_t i = 1; i < points.size(); ++i)
+    if (squared(points[i] - centroid) < squared(points[next] - centroid))
+      next = i;
+  std::vector<float> gap(points.size(), std::numeric_limits<float>::infinity());  // to the nearest taken, squared
+  std::vector<cv::Point2f> taken;
+  while (static_cast<int>(taken.size()) < count)
+  {
+    taken.push_back(points[next]);
+    std::size_t farthest = next;
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      gap[i] = std::min(gap[i], squared(points[i] - taken.back()));
+      if (gap[i] > gap[farthest])
+        farthest = i;
+    }
+    next = farthest;
+  }
+  return taken;
+}
+
+/// A grey template's edge points as amcr reads them (amcr::Prototype with the default parameters, the
+/// template's region as its alpha channel), original prototype px. Throws std::invalid_argument naming
+/// the label when amcr cannot read it (too few edges).
+std::vector<cv::Point2f> templateModelPoints(const PrototypeImage& p)
+{
+  cv::Mat image = p.grey;
+  if (cv::countNonZero(p.mask) < static_cast<int>(p.mask.total()))
+    cv::merge(std::vector<cv::Mat>{p.grey, p.grey, p.grey, p.mask}, image);
+  const amcr::Params params;
+  std::vector<cv::Point2f> points;
+  try
+  {
+    // The edge model does not depend on the lookup table's stride: the coarsest is the quickest to build.
+    const amcr::Prototype prototype(p.label, image, params.prototype_size, params.edge_threshold, params.blur_sigma,
+                                    amcr::Prototype::kMaxTableStride, "", params.edge_full_strength);
+    for (const amcr::OutlinePoint& o : prototype.outline())
+      points.emplace_back(amcr::applyAffine(prototype.tableToOriginal(), cv::Point2d(o.position)));
+  }
+  catch (const std::exception& e)
+  {
+    throw std::invalid_argument("shape context baseline: " + std::string(e.what()));
+  }
+  return points;
+}
+
+/// The frame's edge points as a template's are found (amcr::templateEdgePoints with amcr's default
+/// parameters and chains of 8 px, as amcr::Prototype reads a template), frame px.
+std::vector<cv::Point2f> frameEdgePoints(const cv::Mat& grey)
+{
+  constexpr int kMinChain = 8;  // px: amcr's template reading drops shorter chains as texture
+  const amcr::Params params;
+  std::vector<cv::Point2f> points;
+  for (const amcr::OutlinePoint& o : amcr::templateEdgePoints(amcr::prepareScanImage(grey, params.blur_sigma),
+                                                              params.edge_threshold, params.edge_full_strength,
+                                                              kMinChain, cv::Mat()))
+    points.push_back(o.position);
+  return points;
+}
+
+/// The `points` inside the closed `contour` (bounding box `box`) or within 2 px of it.
+std::vector<cv::Point2f> pointsWithin(const std::vector<cv::Point2f>& points, const std::vector<cv::Point>& contour,
+                                      const cv::Rect& box)
+{
+  const cv::Rect around(box.x - 2, box.y - 2, box.width + 4, box.height + 4);
+  cv::Mat inside = cv::Mat::zeros(around.size(), CV_8UC1);
+  const std::vector<std::vector<cv::Point>> contours = {contour};
+  cv::drawContours(inside, contours, 0, cv::Scalar(255), cv::FILLED, cv::LINE_8, cv::noArray(), INT_MAX, -around.tl());
+  cv::drawContours(inside, contours, 0, cv::Scalar(255), 5, cv::LINE_8, cv::noArray(), INT_MAX, -around.tl());
+  std::vector<cv::Point2f> within;
+  for (const cv::Point2f& p : points)
+  {
+    const cv::Point at(cvRound(p.x) - around.x, cvRound(p.y) - around.y);
+    if (at.inside(cv::Rect(0, 0, around.width, around.height)) && inside.at<unsigned char>(at))
+      within.push_back(p);
+  }
+  return within;
+}
+
 /// `points` turned by `angle` (rad) and scaled by `scale` about the origin.
 std::vector<cv::Point2f> turned(const std::vector<cv::Point2f>& points, double angle, double scale)
 {
@@ -121,8 +215,19 @@ ShapeContext::ShapeContext(const std::vector<PrototypeImage>& prototypes, const 
 {
   for (const PrototypeImage& p : prototypes)
   {
-    const std::vector<cv::Point> outline = prototypeOutline(p.mask);
-    Model model{p.label, resampleOutline(outline, config.points), outline.empty() ? 0.0 : cv::contourArea(outline)};
+    Model model;
+    if (p.isTemplate())
+    {
+      const std::vector<cv::Point2f> edges = templateModelPoints(p);
+      std::vector<cv::Point2f> hull;
+      cv::convexHull(edges, hull);
+      model = {p.label, spreadOver(edges, config.template_points), hull.size() < 3 ? 0.0 : cv::contourArea(hull), true};
+    }
+    else
+    {
+      const std::vector<cv::Point> outline = prototypeOutline(p.mask);
+      model = {p.label, resampleOutline(outline, config.points), outline.empty() ? 0.0 : cv::contourArea(outline)};
+    }
     if (model.points.empty() || model.area <= 0)
       throw std::invalid_argument("shape context baseline: prototype '" + p.label + "' holds no shape (mask > 127)");
     models_.push_back(std::move(model));
@@ -149,6 +254,9 @@ std::vector<Detection> ShapeContext::detect(const cv::Mat& grey)
   cv::Mat edges;
   cv::Canny(grey, edges, config_.canny_low, config_.canny_high);
   cv::dilate(edges, edges, cv::Mat());  // a contour runs along boundary pixels, up to 1 px off the edge
+  const bool any_template =
+      std::any_of(models_.begin(), models_.end(), [](const Model& m) { return m.inner_edges; });
+  const std::vector<cv::Point2f> edge_points = any_template ? frameEdgePoints(grey) : std::vector<cv::Point2f>();
   struct Candidate
   {
     std::vector<cv::Point> contour;
@@ -189,14 +297,21 @@ std::vector<Detection> ShapeContext::detect(const cv::Mat& grey)
   std::vector<Detection> found;
   for (const Candidate* c : kept)
   {
-    const std::vector<cv::Point2f> points = resampleOutline(c->contour, config_.points);
-    if (points.empty() || c->area <= 0)
+    const std::vector<cv::Point2f> outline = resampleOutline(c->contour, config_.points);
+    if (outline.empty() || c->area <= 0)
       continue;
+    // The edges within, for the grey templates.
+    const std::vector<cv::Point2f> inner =
+        any_template ? spreadOver(pointsWithin(edge_points, c->contour, c->box), config_.template_points)
+                     : std::vector<cv::Point2f>();
     // The candidate's nearest prototype, over all starting orientations, with a plausible pose.
-    double best = std::numeric_limits<double>::infinity();
+    double best = std::numeric_limits<double>::infinity(), limit = 0;
     Detection detection;
     for (const Model& model : models_)
     {
+      const std::vector<cv::Point2f>& points = model.inner_edges ? inner : outline;
+      if (points.size() < 3)
+        continue;
       // The extractor normalises both sets by the first set's mean point distance: the prototype is
       // brought to the candidate's size first, or the first iteration compares mismatched scales.
       const double area_ratio = c->area / model.area;
@@ -219,13 +334,14 @@ std::vector<Detection> ShapeContext::detect(const cv::Mat& grey)
         if (d < best && fitPose(model.points, points, recorder_->matches(), config_, area_ratio, pose))
         {
           best = d;
+          limit = model.inner_edges ? config_.template_max_distance : config_.max_distance;
           pose.label = model.label;
           pose.score = -d;
           detection = std::move(pose);
         }
       }
     }
-    if (best <= config_.max_distance)
+    if (best <= limit)
       found.push_back(std::move(detection));
   }
   // One report per label: its best candidate.

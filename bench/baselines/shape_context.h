@@ -6,6 +6,14 @@
 // orientations (an affine transformer aligns them); a candidate goes to its nearest
 // prototype, and the affine is fitted to the point matches of the extractor's last
 // iteration, which are the detection's correspondences.
+// A grey template (prototype_image.h) has no outline to compare: as in Belongie et al., whose
+// points are sampled from a shape's inner and outer edges, its points are its edge model as amcr
+// reads it (amcr::Prototype), spread over it, and they are compared with the frame's edge points
+// found the same way (amcr::templateEdgePoints) within a candidate's contour, spread the same way.
+// (With Canny's pixels on the frame instead, the drawn part of the tests matched at costs of
+// 0.09-0.12, no better than clutter.) The candidates are still closed contours of the binarised
+// frame: a template is found only where an outline of it (a tag's black square, a box's sides)
+// stands out as one, and its pose comes from the points' matches alone.
 #pragma once
 
 #include <vector>
@@ -19,6 +27,7 @@ namespace amcr_bench
 struct ShapeContextConfig
 {
   int points = 50;     ///< points per outline, evenly spaced in arc length
+  int template_points = 100;  ///< per grey template, and per candidate compared with one: spread over its edges
   int turns = 8;       ///< starting orientations of the prototype, evenly spread over the full turn
   int iterations = 3;  ///< the extractor's match-and-align rounds (OpenCV's default)
   // Extractor distance (shape-context cost, 0-1, for 50 points) accepted as a match. Set on drawn scenes
@@ -26,6 +35,10 @@ struct ShapeContextConfig
   // the benchmark draws them): the shown shape at 0.03-0.096, clutter against memories of 3, 17 and 70
   // prototypes at 0.115 and above.
   double max_distance = 0.1;
+  /// The same for a grey template (100 edge points). Set on the drawn part over clutter (test/template_drawing.h,
+  /// 1.1 x, 3 clutter seeds x 4 turns): the part at 0.026-0.06 in 10 of 12 views (once at 0.10), clutter
+  /// and a plain square of the part's outline at 0.098 and above.
+  double template_max_distance = 0.08;
   double max_anisotropy = 4.0;   ///< of a plausible pose: largest / smallest singular value of its affine
   double max_area_change = 1.5;  ///< factor by which the pose may scale the prototype's area off the candidate's
   double ransac_px = 3.0;        ///< inlier distance of the affine fit to the matches, image px (OpenCV's default)
@@ -44,7 +57,8 @@ struct ShapeContextConfig
 class ShapeContext : public Method
 {
 public:
-  /// Throws std::invalid_argument naming the label when a prototype's mask holds no shape.
+  /// Throws std::invalid_argument naming the label when a prototype's mask holds no shape, or a grey
+  /// template has too few edges for amcr to read it.
   ShapeContext(const std::vector<PrototypeImage>& prototypes, const ShapeContextConfig& config = ShapeContextConfig());
   std::string name() const override { return "sc"; }
   std::vector<Detection> detect(const cv::Mat& grey) override;
@@ -54,8 +68,9 @@ private:
   struct Model
   {
     std::string label;
-    std::vector<cv::Point2f> points;  ///< the outline resampled, original prototype px
-    double area = 0.0;                ///< enclosed by the outline, px^2
+    std::vector<cv::Point2f> points;  ///< the outline resampled (a template's edges spread), original prototype px
+    double area = 0.0;                ///< enclosed by the outline (a template's edges' convex hull), px^2
+    bool inner_edges = false;         ///< a grey template: compared with the edges within a candidate
   };
   ShapeContextConfig config_;
   std::vector<Model> models_;
