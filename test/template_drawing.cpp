@@ -66,4 +66,18 @@ std::vector<cv::Mat> templateOverClutter(TemplateView view, const amcr::Affine& 
     out.push_back(addNoise(clean, clutter.noise_sigma, clutter.seed * 1000 + static_cast<std::uint64_t>(k)));
   return out;
 }
+amcr::Affine templatePlacement(double turn_deg, const cv::Point2d& centre, double scale)
+{
+  const cv::Point2d template_centre(0.5 * (kTemplateSide - 1), 0.5 * (kTemplateSide - 1));
+  return makeAffine(template_centre, centre, turn_deg * CV_PI / 180.0, scale, scale, 0.0);
+}
+
+cv::Mat templateFrame(TemplateView view, const amcr::Affine& truth, std::uint64_t clutter_seed)
+{
+  Clutter clutter;
+  clutter.random_shapes = 7;
+  clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
+  clutter.seed = clutter_seed;
+  return templateOverClutter(view, truth, clutter, 1)[0];
+}
 }  // namespace amcr_test

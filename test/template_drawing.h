@@ -4,6 +4,7 @@
 // plain outline over clutter.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -39,4 +40,12 @@ enum class TemplateView
 /// with its own noise (seed clutter.seed * 1000 + frame, added after a reversal).
 std::vector<cv::Mat> templateOverClutter(TemplateView view, const amcr::Affine& truth, const Clutter& clutter,
                                          int frames);
+
+/// Template px -> image px: the template's centre at `centre`, turned by
+/// `turn_deg` degrees, scaled by `scale`.
+amcr::Affine templatePlacement(double turn_deg, const cv::Point2d& centre, double scale);
+
+/// One frame of `view` under `truth` over seven random shapes, an ell and a
+/// flag (the clutter of the template tests), drawn with `clutter_seed`.
+cv::Mat templateFrame(TemplateView view, const amcr::Affine& truth, std::uint64_t clutter_seed);
 }  // namespace amcr_test

@@ -41,8 +41,7 @@ std::shared_ptr<const amcr::PrototypeMemory> memoryWithPart(bool outline_only, b
 
 amcr::Affine partAt(double turn_deg, const cv::Point2d& centre)
 {
-  const cv::Point2d template_centre(0.5 * (amcr_test::kTemplateSide - 1), 0.5 * (amcr_test::kTemplateSide - 1));
-  return amcr_test::makeAffine(template_centre, centre, turn_deg * M_PI / 180.0, 1.1, 1.1, 0.0);
+  return amcr_test::templatePlacement(turn_deg, centre, 1.1);
 }
 
 std::vector<cv::Mat> partFrames(TemplateView view, const amcr::Affine& truth, std::uint64_t clutter_seed)

@@ -35,20 +35,9 @@ amcr_bench::Line2d& partDetector()
   return detector;
 }
 
-amcr::Affine partAt(double turn_deg)
-{
-  const cv::Point2d template_centre(0.5 * (amcr_test::kTemplateSide - 1), 0.5 * (amcr_test::kTemplateSide - 1));
-  return amcr_test::makeAffine(template_centre, {330, 250}, turn_deg * CV_PI / 180.0, kScale, kScale, 0.0);
-}
+amcr::Affine partAt(double turn_deg) { return amcr_test::templatePlacement(turn_deg, {330, 250}, kScale); }
 
-cv::Mat frameOf(TemplateView view, const amcr::Affine& truth)
-{
-  amcr_test::Clutter clutter;
-  clutter.random_shapes = 7;
-  clutter.silhouettes = {amcr_test::ShapeId::kEll, amcr_test::ShapeId::kFlag};
-  clutter.seed = 5;
-  return amcr_test::templateOverClutter(view, truth, clutter, 1)[0];
-}
+cv::Mat frameOf(TemplateView view, const amcr::Affine& truth) { return amcr_test::templateFrame(view, truth, 5); }
 
 class Line2dTemplateTurn : public testing::TestWithParam<double>
 {
