@@ -102,7 +102,8 @@ def black_square_corners(cells):
 def read_truth(path):
     """Tag id -> its 4 corners (x, y), pixel centres at whole numbers as everywhere in amcr. The file
     gives ViSP's image points, (row, column), as the AprilTag library computes them: with a pixel's
-    centre at +0.5 (AprilRobotics/apriltag issue #121), so half a pixel is taken off both."""
+    centre at +0.5 (the library's convention, confirmed by its maintainers), so half a pixel is
+    taken off both."""
     truth, tag = {}, None
     with open(path) as f:
         for line in f:

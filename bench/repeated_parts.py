@@ -1,0 +1,142 @@
+#!/usr/bin/python3
+"""Many copies of one grey template in view: 36 parts on a board, as LEDs on a board or parts on a tray.
+
+Each draw is a 640 x 480 board (grey 150) with 25 scattered lines and a 6 x 6 grid of copies of one
+drawn part (a dark square body with a light disc and a light bar, so that no turn of it looks the
+same), each turned at random, its body 52-60 px across, blurred (sigma 0.8 px) with sensor noise
+(sigma 4 grey levels). The prototype is the part with its board margin and an alpha channel over
+the body and a 4 px rim, so it is read as a grey template. The truth is the drawing's own affine of
+each copy. amcr_offline runs the still scene for --frames frames per recognizer seed; the report
+gives per draw and seed the copies reported within 3 px (mean over the body's corners), the others
+reported, the median corner error, and the copies found by frames 10, 20, ...
+
+    bench/repeated_parts.py --out .build/repeated-parts [--draws 1-3] [--seeds 1-2] [--frames 60] [--config FILE]
+
+The parts are 52-60 px, below the default min_object_size (64 px), and 36 is more than a config
+with max_objects under 36 reports: the --config given should set min_object_size (40 here) and
+max_objects; without one the script writes one with min_object_size 40 and the defaults otherwise.
+"""
+import argparse
+import json
+import os
+import sys
+
+import cv2
+import numpy as np
+
+from still_photo import parse_seeds, run_still
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SIDE = 160                    # the part's template image, px
+BODY = (20, 139)              # its body, first and last px on both axes
+ROWS, COLUMNS = 6, 6
+RIGHT_WITHIN = 3.0            # px: a copy reported this close (mean over the body's corners) is found
+
+
+def draw_part():
+    """The template (grey) and its alpha (the body and a 4 px rim of board)."""
+    part = np.full((SIDE, SIDE), 150, np.uint8)
+    cv2.rectangle(part, (BODY[0], BODY[0]), (BODY[1], BODY[1]), 45, -1)
+    cv2.circle(part, (60, 62), 22, 215, -1)
+    cv2.rectangle(part, (40, 108), (120, 122), 185, -1)
+    alpha = np.zeros_like(part)
+    alpha[BODY[0] - 4:BODY[1] + 5, BODY[0] - 4:BODY[1] + 5] = 255
+    return part, alpha
+
+
+def draw_scene(draw, part, alpha):
+    """The board with its copies, and each copy's template px -> image px affine (2 x 3)."""
+    rng = np.random.default_rng(draw)
+    board = np.full((480, 640), 150, np.uint8)
+    for _ in range(25):
+        p = rng.integers(0, [640, 480], size=2)
+        q = p + rng.integers(-60, 60, size=2)
+        cv2.line(board, (int(p[0]), int(p[1])), (int(q[0]), int(q[1])), int(rng.integers(60, 230)),
+                 int(rng.integers(1, 3)))
+    body_mask = np.zeros_like(part)
+    body_mask[BODY[0]:BODY[1] + 1, BODY[0]:BODY[1] + 1] = 255
+    truth = []
+    centre = 0.5 * (SIDE - 1)
+    for r in range(ROWS):
+        for c in range(COLUMNS):
+            x = 60 + c * 104 + rng.uniform(-4, 4)
+            y = 45 + r * 78 + rng.uniform(-4, 4)
+            scale = rng.uniform(52, 60) / (BODY[1] - BODY[0] + 1)
+            m = cv2.getRotationMatrix2D((centre, centre), rng.uniform(0, 360), scale)
+            m[:, 2] += [x - centre, y - centre]
+            warped = cv2.warpAffine(part, m, (640, 480), flags=cv2.INTER_AREA)
+            inside = cv2.warpAffine(body_mask, m, (640, 480)) > 127
+            board[inside] = warped[inside]
+            truth.append(m)
+    noisy = cv2.GaussianBlur(board, (0, 0), 0.8) + rng.normal(0, 4, board.shape)
+    return np.clip(noisy, 0, 255).astype(np.uint8), truth
+
+
+def body_corners(affine):
+    corners = np.array([[BODY[0], BODY[0], 1], [BODY[1], BODY[0], 1], [BODY[1], BODY[1], 1], [BODY[0], BODY[1], 1]],
+                       float).T
+    return (np.asarray(affine).reshape(2, 3) @ corners).T
+
+
+def score(objects, truth):
+    """(copies found, other reports, corner errors of the found ones)."""
+    found, errors, other = set(), [], 0
+    for o in objects:
+        mapped = body_corners(o["prototype_to_image"])
+        k = min(range(len(truth)), key=lambda i: np.linalg.norm(body_corners(truth[i]).mean(0) - mapped.mean(0)))
+        e = float(np.mean(np.linalg.norm(body_corners(truth[k]) - mapped, axis=1)))
+        if e <= RIGHT_WITHIN and k not in found:
+            found.add(k)
+            errors.append(e)
+        else:
+            other += 1
+    return len(found), other, errors
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+    parser.add_argument("--out", default=os.path.join(HERE, "..", ".build", "repeated-parts"))
+    parser.add_argument("--bin", default=os.path.join(HERE, "..", ".build", "ws", "devel", "lib", "amcr"))
+    parser.add_argument("--config", default="", help="parameter file for amcr_offline (see above)")
+    parser.add_argument("--draws", default="1-3")
+    parser.add_argument("--seeds", default="1-2")
+    parser.add_argument("--frames", type=int, default=60)
+    args = parser.parse_args()
+
+    prototypes = os.path.join(args.out, "prototypes")
+    os.makedirs(prototypes, exist_ok=True)
+    part, alpha = draw_part()
+    cv2.imwrite(os.path.join(prototypes, "part.png"), cv2.merge([part, part, part, alpha]))
+    config = args.config
+    if not config:
+        config = os.path.join(args.out, "config.yaml")
+        with open(os.path.join(HERE, "..", "config", "amcr.yaml")) as f:
+            lines = ["min_object_size: 40.0\n" if line.startswith("min_object_size:") else line for line in f]
+        with open(config, "w") as f:
+            f.writelines(lines)
+
+    summary = []
+    print("%d copies of a drawn part per draw, %d frames, config %s" % (ROWS * COLUMNS, args.frames, config))
+    for draw in parse_seeds(args.draws):
+        image, truth = draw_scene(draw, part, alpha)
+        photo = os.path.join(args.out, "draw-%d.png" % draw)
+        cv2.imwrite(photo, image)
+        for seed in parse_seeds(args.seeds):
+            output = os.path.join(args.out, "draw-%d-seed-%d.jsonl" % (draw, seed))
+            frames = run_still(args.bin, prototypes, photo, args.frames, seed, output, config)
+            found, other, errors = score(frames[-1]["objects"], truth)
+            by_frame = [score(frames[k]["objects"], truth)[0] for k in range(9, len(frames), 10)]
+            row = {"draw": draw, "seed": seed, "found": found, "other": other,
+                   "median_corner_error_px": float(np.median(errors)) if errors else None, "found_by_frame": by_frame}
+            summary.append(row)
+            print("draw %d seed %d: %d of %d found (median %s px), %d other reports; by frames 10, 20, ...: %s"
+                  % (draw, seed, found, len(truth), "%.2f" % row["median_corner_error_px"] if errors else "-", other,
+                     by_frame))
+    with open(os.path.join(args.out, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
