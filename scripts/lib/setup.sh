@@ -16,7 +16,8 @@ AMCR_JOBS="${AMCR_JOBS:-2}"
 # Debian packages: Debian's ROS 1 build (catkin, roscpp, nodelet, image_transport, cv_bridge, ...)
 # plus the libraries this package uses. opencv-doc provides the silhouettes and photos of the demo sequence. The benchmark's
 # peers and their tests use OpenCV's rgbd (contrib: LINE-2D) and shape (shape contexts) modules;
-# libopencv-dev depends on both, named here because the tests need them.
+# libopencv-dev depends on both, named here because the tests need them. rviz, xvfb and x11-apps
+# (xwd) run RViz in a virtual display for test/ros/rviz_screenshot.py.
 AMCR_PACKAGES=(
   build-essential ros-base-dev rosbash libimage-transport-dev libcv-bridge-dev
   libtf2-ros-dev libtf2-eigen-dev python3-rostest python3-cv-bridge python3-opencv
@@ -26,6 +27,7 @@ AMCR_PACKAGES=(
   librostest-dev python3-rosbag python3-diagnostic-msgs python3-std-srvs python3-rosparam catkin-lint
   libimage-geometry-dev libvisualization-msgs-dev python3-visualization-msgs python3-tf2-ros
   libopencv-contrib-dev libopencv-shape-dev nlohmann-json3-dev libyaml-cpp-dev libboost-program-options-dev
+  rviz xvfb x11-apps
 )
 
 # scripts/fuzz: clang and its libFuzzer runtime. On bookworm the runtime (libclang_rt.fuzzer) is in
