@@ -206,7 +206,7 @@ RecognizerRos::PreparedSwap RecognizerRos::prepareReconfigure(const amcr::AMCRCo
     if (what.empty())
       return prepared;  // the initial call, or nothing new: nothing to swap
     std::shared_ptr<const amcr::PrototypeMemory> memory = state.memory;
-    if (memory && ((level & kReconfigureTables) || tablesDiffer(changed, state.params)))
+    if (memory && ((level & kReconfigureTables) || amcr::tablesDiffer(changed, state.params)))
       memory = rebuildMemory(state, changed);
     auto rebuilt = std::make_shared<std::unique_ptr<amcr::Recognizer>>();
     if (memory)

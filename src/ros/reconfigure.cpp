@@ -145,14 +145,6 @@ ConfigBounds reconfigureBounds()
   return bounds;
 }
 
-bool tablesDiffer(const amcr::Params& a, const amcr::Params& b)
-{
-  return a.prototype_size != b.prototype_size || a.edge_threshold != b.edge_threshold ||
-         a.blur_sigma != b.blur_sigma || a.table_stride != b.table_stride ||
-         a.table_budget_mb != b.table_budget_mb || a.edge_full_strength != b.edge_full_strength ||
-         a.keep_polarity != b.keep_polarity;
-}
-
 std::string describeChanges(const amcr::Params& before, const amcr::Params& after)
 {
   std::string out;

@@ -37,9 +37,6 @@ struct ConfigBounds
 };
 ConfigBounds reconfigureBounds();
 
-/// True when a memory built with `a` differs from one built with `b`.
-bool tablesDiffer(const amcr::Params& a, const amcr::Params& b);
-
 /// The parameters that differ, readable ("num_v_particles 60 -> 40, sigma_w 5 -> 7.5,
 /// prototype_priors 'bat: 2'"; whole numbers as integers); empty when none.
 std::string describeChanges(const amcr::Params& before, const amcr::Params& after);

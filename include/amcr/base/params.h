@@ -221,10 +221,17 @@ struct ParameterInfo
   double min;
   double max;
   std::string description;
+  /// The prototype memory is built with it: a change needs new lookup
+  /// tables (the TABLES level of cfg/AMCR.cfg).
+  bool builds_tables = false;
 };
 
 /// All numeric parameters, in the order of config/amcr.yaml.
 const std::vector<ParameterInfo>& parameterTable();
+
+/// True when a memory built with `a` differs from one built with `b`: a
+/// parameter that builds the tables (ParameterInfo::builds_tables) differs.
+bool tablesDiffer(const Params& a, const Params& b);
 
 /// Reads parameters from a YAML file (yaml-cpp) over the defaults in
 /// `params`. Unknown keys, keys given twice and values out of range throw

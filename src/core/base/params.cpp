@@ -34,6 +34,13 @@ struct NumericParameter
         [](Params& p, double v) { p.field = static_cast<decltype(p.field)>(std::llround(v)); }, true \
   }
 
+/// `p`, marked as a parameter the prototype memory is built with.
+NumericParameter buildsTables(NumericParameter p)
+{
+  p.info.builds_tables = true;
+  return p;
+}
+
 const std::vector<NumericParameter>& numericParameters()
 {
   static const std::vector<NumericParameter> table = {
@@ -49,14 +56,14 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_INT(index_candidates, "", 1, 1000, "places of the memory a V-particle's query returns"),
       AMCR_INT(profile_index, "", 0, 1, "1: the frontal candidates are the best aligned 8 of the index_candidates places nearest in radial-profile key (72 rays); 0: from the 8-ray index"),
       AMCR_INT(index_max_entries, "", 0, 1e9, "most entries of the proposal index; a larger memory is indexed at a larger stride; 0 = no limit"),
-      AMCR_INT(prototype_size, "px", 32, 512, "longer side of a prototype in its lookup table"),
-      AMCR_INT(table_stride, "table px", 0, 4, "spacing of the lookup table's nodes; 1 = every pixel (exact), s = one per s x s block (s^2 less memory and build time); 0 = the smallest stride whose tables fit table_budget_mb"),
-      AMCR_INT(table_budget_mb, "MB", 16, 4096, "most memory the lookup tables may take when table_stride is 0; a given table_stride above it is used with a warning"),
+      buildsTables(AMCR_INT(prototype_size, "px", 32, 512, "longer side of a prototype in its lookup table")),
+      buildsTables(AMCR_INT(table_stride, "table px", 0, 4, "spacing of the lookup table's nodes; 1 = every pixel (exact), s = one per s x s block (s^2 less memory and build time); 0 = the smallest stride whose tables fit table_budget_mb")),
+      buildsTables(AMCR_INT(table_budget_mb, "MB", 16, 4096, "most memory the lookup tables may take when table_stride is 0; a given table_stride above it is used with a warning")),
       AMCR_DOUBLE(max_ray_length, "working px", 10, 4000, "longest radial scan in the working image"),
-      AMCR_DOUBLE(edge_threshold, "grey levels", 1, 255, "step over 2 px that counts as an edge where the local edge strength reaches edge_full_strength"),
-      AMCR_DOUBLE(edge_full_strength, "grey levels", 0, 255, "local edge strength (99th percentile of the 2 px steps within about 50 px) at which edge_threshold applies in full; below it the threshold falls in proportion, down to 5 sigma of the frame's step noise; 0 = edge_threshold everywhere"),
-      AMCR_DOUBLE(blur_sigma, "working px", 0, 10, "Gaussian smoothing of the working image before scanning"),
-      AMCR_INT(keep_polarity, "", 0, 1, "1: a grey template's edges count only where the grey rises across them as in the template; 0: the polarity most of its points show (a part in reversed contrast is found); silhouettes: no effect"),
+      buildsTables(AMCR_DOUBLE(edge_threshold, "grey levels", 1, 255, "step over 2 px that counts as an edge where the local edge strength reaches edge_full_strength")),
+      buildsTables(AMCR_DOUBLE(edge_full_strength, "grey levels", 0, 255, "local edge strength (99th percentile of the 2 px steps within about 50 px) at which edge_threshold applies in full; below it the threshold falls in proportion, down to 5 sigma of the frame's step noise; 0 = edge_threshold everywhere")),
+      buildsTables(AMCR_DOUBLE(blur_sigma, "working px", 0, 10, "Gaussian smoothing of the working image before scanning")),
+      buildsTables(AMCR_INT(keep_polarity, "", 0, 1, "1: a grey template's edges count only where the grey rises across them as in the template; 0: the polarity most of its points show (a part in reversed contrast is found); silhouettes: no effect")),
       AMCR_INT(working_resolution, "input px", 0, 4000, "longer side of the working image: a larger input is reduced to it (never enlarged) and the results mapped back to input px; every other length in px is of the working image, except min_object_size; 0 = the input's own size"),
       AMCR_DOUBLE(sigma_w, "px", 1e-3, 1000, "std. dev. of a ray's deviation (eq. 5); paper 10"),
       AMCR_DOUBLE(p_outlier, "", 0, 1, "probability that a ray is an outlier (eq. 5); paper 0.1"),
@@ -227,6 +234,14 @@ const std::vector<ParameterInfo>& parameterTable()
     return infos;
   }();
   return table;
+}
+
+bool tablesDiffer(const Params& a, const Params& b)
+{
+  for (const auto& p : numericParameters())
+    if (p.info.builds_tables && p.get(a) != p.get(b))
+      return true;
+  return false;
 }
 
 void setParameter(Params& params, const std::string& name, double value)
