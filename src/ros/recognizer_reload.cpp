@@ -54,7 +54,7 @@ const char* const RecognizerRos::kMemoryChanged =
 RecognizerRos::EditState RecognizerRos::editState() const
 {
   std::lock_guard<std::mutex> lock(mutex_);
-  return {generation_, params_, memory_, memory_directory_, taught_, removed_labels_, last_image_};
+  return {generation_, params_, memory_, edits_, last_image_};
 }
 
 std::string RecognizerRos::commit(PreparedSwap& prepared)
@@ -123,9 +123,7 @@ std::string RecognizerRos::swapLoaded(const std::string& directory, amcr::Filter
   else
     restart(std::make_unique<amcr::Recognizer>(std::move(tables)));
   memory_ = memory;
-  memory_directory_ = directory;
-  taught_.clear();
-  removed_labels_.clear();
+  edits_.loaded(directory);
   ++table_version_;
   for (const std::string& w : recognizer_->filter().indexWarnings())
     ROS_WARN("proposal index: %s", w.c_str());
@@ -207,7 +205,7 @@ RecognizerRos::PreparedSwap RecognizerRos::prepareReconfigure(const amcr::AMCRCo
       return prepared;  // the initial call, or nothing new: nothing to swap
     std::shared_ptr<const amcr::PrototypeMemory> memory = state.memory;
     if (memory && ((level & kReconfigureTables) || amcr::tablesDiffer(changed, state.params)))
-      memory = rebuildMemory(state, changed);
+      memory = state.edits.rebuild(changed, &RecognizerRos::loadDirectory);
     auto rebuilt = std::make_shared<std::unique_ptr<amcr::Recognizer>>();
     if (memory)
       *rebuilt = std::make_unique<amcr::Recognizer>(changed, memory);  // refuses priors naming no prototype
@@ -245,18 +243,4 @@ std::string RecognizerRos::swapReconfigured(const amcr::Params& changed,
   return "";
 }
 
-std::shared_ptr<const amcr::PrototypeMemory> RecognizerRos::rebuildMemory(const EditState& state,
-                                                                           const amcr::Params& params)
-{
-  auto memory = std::make_shared<amcr::PrototypeMemory>();
-  if (!state.directory.empty())
-    *memory = loadDirectory(state.directory, params);
-  for (const std::string& label : state.removed_labels)
-    memory->remove(label);
-  for (const TaughtShape& shape : state.taught)
-    memory->add(shape.label, shape.silhouette, params);
-  if (memory->empty())
-    throw amcr::MemoryError("the rebuilt memory holds no prototype");
-  return memory;
-}
 }  // namespace amcr_ros

@@ -315,7 +315,7 @@ void RecognizerRos::reportSkipped(const sensor_msgs::Image& msg, const std::stri
 
 void RecognizerRos::publishPrototypeTable()
 {
-  pub_prototypes_.publish(toMsg(memory_.get(), memory_directory_, table_version_, ros::Time::now()));
+  pub_prototypes_.publish(toMsg(memory_.get(), edits_.directory(), table_version_, ros::Time::now()));
 }
 
 void RecognizerRos::reportInputError(const std::string& text)

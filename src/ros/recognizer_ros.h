@@ -56,6 +56,7 @@
 
 #include "amcr/base/params.h"
 #include "amcr/filter/filter_memory.h"
+#include "amcr/memory/memory_edits.h"
 #include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
 #include "recognizer_stats.h"
@@ -141,21 +142,13 @@ private:
   void loadStartupState();
   /// The reconfigure server, /diagnostics and the services.
   void advertise(std::function<std::uint32_t()> overlay_subscribers);
-  /// Prototypes taught in this session and not saved (kept over a rebuild of the tables).
-  struct TaughtShape
-  {
-    std::string label;
-    cv::Mat silhouette;
-  };
   /// What a rebuild starts from: a copy of the state, taken under the lock.
   struct EditState
   {
     std::uint64_t generation = 0;
     amcr::Params params;
     std::shared_ptr<const amcr::PrototypeMemory> memory;
-    std::string directory;
-    std::vector<TaughtShape> taught;
-    std::vector<std::string> removed_labels;
+    amcr::MemoryEdits edits;  ///< the directory and this session's edits of its memory
     cv_bridge::CvImageConstPtr last_image;
   };
   EditState editState() const;  // takes the lock
@@ -173,10 +166,6 @@ private:
   /// loaded), which keeps the filter replaced.
   std::string swapReconfigured(const amcr::Params& changed, std::shared_ptr<const amcr::PrototypeMemory> memory,
                                std::unique_ptr<amcr::Recognizer>& rebuilt, const std::string& what);
-  /// The memory of state.directory (none when empty) built with `params`, with this session's edits
-  /// applied: labels removed, prototypes taught and not saved added. Throws MemoryError.
-  static std::shared_ptr<const amcr::PrototypeMemory> rebuildMemory(const EditState& state,
-                                                                     const amcr::Params& params);
   /// Swaps in an edited memory made ready as `tables` (lock held): extended (the filter goes on) or not
   /// (it restarts); `tables` keeps what it replaced; the version counts up and the table is published.
   void swapEditedMemory(amcr::FilterMemory& tables, bool extended);
@@ -206,7 +195,6 @@ private:
   mutable std::mutex mutex_;  // everything below
   amcr::Params params_;
   std::shared_ptr<const amcr::PrototypeMemory> memory_;
-  std::string memory_directory_;
   std::unique_ptr<amcr::Recognizer> recognizer_;  // null while no memory is loaded
   ros::Time last_stamp_;
   cv::Size last_size_;
@@ -216,10 +204,9 @@ private:
   cv_bridge::CvImageConstPtr last_image_;
   std::uint32_t table_version_ = 0;
   std::uint64_t generation_ = 0;  // counts the swaps of the memory or the parameters
-  /// Prototypes taught in this session and not saved, and labels removed from the directory's memory;
-  /// both forgotten by ~load_prototypes.
-  std::vector<TaughtShape> taught_;
-  std::vector<std::string> removed_labels_;
+  /// The directory of the memory, the prototypes taught in this session and not saved, and the labels
+  /// removed from the directory's memory (the edits forgotten by ~load_prototypes).
+  amcr::MemoryEdits edits_;
 
   // Last: their callbacks use everything above. The queue of the rebuilding calls outlives their servers.
   ros::CallbackQueue edit_queue_;

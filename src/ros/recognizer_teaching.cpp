@@ -1,12 +1,9 @@
 // RecognizerRos's edits of the memory at runtime (recognizer_ros.h): ~teach
-// and ~remove_prototype, each built without the frame lock and swapped in by
-// commit() (recognizer_reload.cpp).
-#include <algorithm>
-#include <cctype>
+// and ~remove_prototype, each checked (amcr::MemoryEdits, ROS-free), built
+// without the frame lock and swapped in by commit() (recognizer_reload.cpp).
 #include <chrono>
 #include <exception>
 #include <filesystem>
-#include <system_error>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
@@ -20,22 +17,6 @@ namespace amcr_ros
 {
 namespace
 {
-/// Empty when `label` can name a prototype (and its file): letters, digits, '_', '-', '.'; not
-/// starting with '.'; at most 64 characters. Otherwise why not.
-std::string checkLabel(const std::string& label)
-{
-  if (label.empty())
-    return "the label is empty";
-  if (label.size() > 64)
-    return "the label '" + label + "' is longer than 64 characters";
-  if (label.front() == '.')
-    return "the label '" + label + "' starts with '.'";
-  for (char c : label)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.')
-      return "the label '" + label + "' has a character other than letters, digits, '_', '-' and '.'";
-  return "";
-}
-
 /// The request's region: its polygon, or its rectangle when the polygon has no points.
 std::vector<cv::Point2f> requestedRegion(const amcr::TeachPrototype::Request& request)
 {
@@ -79,23 +60,10 @@ std::string RecognizerRos::teachShape(const amcr::TeachPrototype::Request& reque
   const auto start = std::chrono::steady_clock::now();
   // The checks on a copy of the state (commit() refuses the swap when it changed meanwhile).
   const EditState state = editState();
-  std::string why = checkLabel(request.label);
+  std::string saved;
+  std::string why = state.edits.teachRefusal(state.memory.get(), request.label, request.save, saved);
   if (!why.empty())
     return why;
-  if (state.memory && state.memory->find(request.label) >= 0)
-    return "the label '" + request.label + "' is taken (" +
-           std::to_string(state.memory->instancesOf(request.label).size()) +
-           " prototypes): remove it with ~remove_prototype or pick another";
-  std::string saved;
-  if (request.save)
-  {
-    if (state.directory.empty())
-      return "nowhere to save: no prototype directory is loaded (set ~prototypes or call ~load_prototypes)";
-    saved = (std::filesystem::path(state.directory) / (request.label + ".png")).string();
-    std::error_code error;
-    if (std::filesystem::exists(saved, error))
-      return "'" + saved + "' exists already: remove it or pick another label";
-  }
   if (!state.last_image)
     return "no image received yet: there is nothing to cut the shape from";
 
@@ -126,7 +94,7 @@ std::string RecognizerRos::teachShape(const amcr::TeachPrototype::Request& reque
       throw;
     }
     if (saved.empty())
-      taught_.push_back({request.label, cut.prototypeImage().clone()});
+      edits_.taught(request.label, cut.prototypeImage());
     response.prototype_id = static_cast<int>(memory_->size()) - 1;
     return std::string();
   };
@@ -172,10 +140,9 @@ amcr::RemovePrototype::Response RecognizerRos::removePrototype(const std::string
 std::string RecognizerRos::removeLabel(const std::string& label, amcr::RemovePrototype::Response& response)
 {
   const EditState state = editState();
-  if (!state.memory || state.memory->find(label) < 0)
-    return "no label '" + label + "' in the memory";
-  if (state.memory->labels().size() == 1)
-    return "'" + label + "' is the memory's only label: load another memory instead";
+  const std::string refused = amcr::MemoryEdits::removalRefusal(state.memory.get(), label);
+  if (!refused.empty())
+    return refused;
   // Without the lock: the smaller memory and the filter's indexes.
   auto memory = std::make_shared<amcr::PrototypeMemory>(*state.memory);
   const int removed = static_cast<int>(memory->remove(label));
@@ -184,10 +151,7 @@ std::string RecognizerRos::removeLabel(const std::string& label, amcr::RemovePro
   prepared.generation = state.generation;
   prepared.swap = [&] {
     swapEditedMemory(tables, false);
-    taught_.erase(std::remove_if(taught_.begin(), taught_.end(),
-                                 [&label](const TaughtShape& t) { return t.label == label; }),
-                  taught_.end());
-    removed_labels_.push_back(label);
+    edits_.removed(label);
     ROS_INFO("removed '%s' (%d prototypes; files untouched): filter restarted, label table version %u", label.c_str(),
              removed, table_version_);
     return std::string();
