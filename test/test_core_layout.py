@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """The core library's folders form layers: a file of include/amcr/<folder>/ or src/core/<folder>/
 includes headers of its own folder and of the folders below it, never above; no header includes
-itself through others; no file of src/ or include/ is longer than MAX_LINES; every public header
-is in a folder or is one of the library's face (FACE, at the top of include/amcr/).
+itself through others, and no two units (x.h with x.cpp) include each other; no class holds more
+than MAX_MEMBERS data members (OVER_MAX_MEMBERS: those to cut, which may not grow); no file of src/
+or include/ is longer than MAX_LINES; every public header is in a folder or is one of the library's
+face (FACE, at the top of include/amcr/).
 
   test/test_core_layout.py [--xml FILE]   (JUnit XML for catkin; well under a second)
 """
@@ -131,6 +133,36 @@ class Layers(unittest.TestCase):
                 visit(node, [])
         self.assertEqual(cycles, [], "\n".join(cycles))
 
+    def test_no_include_cycle_between_units(self):
+        """A unit is a header and the sources of its name (x.h, x.cpp): one of them including the
+        other's header, and the other including the first's, is a cycle between two ideas even
+        when no header includes itself (x.cpp -> y.h, y.cpp -> x.h)."""
+        def unit(path):
+            return os.path.splitext(os.path.basename(path))[0]
+        graph = collections.defaultdict(set)
+        for path, edges in include_graph().items():
+            for target, _ in edges:
+                if target is not None and unit(target) != unit(path):
+                    graph[unit(path)].add(unit(target))
+        state = collections.defaultdict(int)  # 0 unseen, 1 on the path, 2 done
+        cycles = []
+
+        def visit(node, path):
+            state[node] = 1
+            path.append(node)
+            for nxt in sorted(graph.get(node, [])):
+                if state[nxt] == 1:
+                    cycles.append(" -> ".join(path[path.index(nxt):] + [nxt]))
+                elif state[nxt] == 0:
+                    visit(nxt, path)
+            path.pop()
+            state[node] = 2
+
+        for node in sorted(graph):
+            if state[node] == 0:
+                visit(node, [])
+        self.assertEqual(cycles, [], "\n".join(cycles))
+
     def test_every_public_header_is_in_a_folder_or_the_face(self):
         loose = sorted(n for n in os.listdir(PUBLIC) if os.path.isfile(os.path.join(PUBLIC, n)))
         self.assertEqual(sorted(set(loose) - set(FACE)), [], "headers at the top of include/amcr not in FACE")
@@ -146,6 +178,57 @@ class Layers(unittest.TestCase):
             if name in headers and headers[name] != folder_of(path):
                 misplaced.append("%s: its header is in %s" % (short(path), headers[name]))
         self.assertEqual(misplaced, [])
+
+
+# A class of the core holds at most MAX_MEMBERS data members (its own state, named with a trailing
+# underscore, the project's style; plain structs of named fields are not counted). The classes above
+# it today are to be cut into collaborators with state of their own; until then each may not grow.
+MAX_MEMBERS = 12
+OVER_MAX_MEMBERS = {"ParticleFilter": 22, "Prototype": 16, "ObservationModel": 13}
+CLASS = re.compile(r"^(?:class|struct)\s+(\w+)[^;{]*\{", re.M)
+MEMBER = re.compile(r"^\s+(?!return\b|using\b|friend\b|typedef\b)[\w:<>,\s*&\[\]]+?\b(\w+_)\s*"
+                    r"(?:=[^;]*|\{[^;]*\}|\[[^\]]*\])?;")
+
+
+def class_members(text):
+    """{class name: its data members named with a trailing underscore} of a header's text."""
+    classes = {}
+    for match in CLASS.finditer(text):
+        depth, end = 1, match.end()
+        while depth and end < len(text):
+            depth += {"{": 1, "}": -1}.get(text[end], 0)
+            end += 1
+        names = set()
+        for line in text[match.end():end - 1].split("\n"):
+            code = line.split("//")[0]
+            found = MEMBER.match(code)
+            if found and "(" not in code:
+                names.add(found.group(1))
+        classes[match.group(1)] = names
+    return classes
+
+
+class ClassSize(unittest.TestCase):
+    maxDiff = None
+
+    def test_no_class_of_the_core_holds_too_many_data_members(self):
+        counts = {}
+        for path in files_under(PUBLIC, (".h",)) + files_under(CORE, (".h",)):
+            with open(path) as f:
+                for name, members in class_members(f.read()).items():
+                    counts[name] = max(counts.get(name, 0), len(members))
+        too_many = ["%s: %d data members (at most %d)" % (name, n, OVER_MAX_MEMBERS.get(name, MAX_MEMBERS))
+                    for name, n in sorted(counts.items()) if n > OVER_MAX_MEMBERS.get(name, MAX_MEMBERS)]
+        self.assertEqual(too_many, [], "\n".join(too_many))
+        grown_smaller = ["%s: %d now, OVER_MAX_MEMBERS says %d: lower it" % (name, counts.get(name, 0), n)
+                         for name, n in sorted(OVER_MAX_MEMBERS.items()) if counts.get(name, 0) < n]
+        self.assertEqual(grown_smaller, [], "\n".join(grown_smaller))
+
+    def test_the_member_count_sees_members(self):
+        text = ("class Counted\n{\npublic:\n  int get() const { return a_; }\n\nprivate:\n  int a_ = 0;\n"
+                "  std::vector<std::pair<int, int>> b_;  // a comment\n  cv::Mat c_;\n  double d_[3];\n"
+                "  static constexpr int kNotAMember = 1;\n  void helper(int x_);\n};\n")
+        self.assertEqual(class_members(text), {"Counted": {"a_", "b_", "c_", "d_"}})
 
 
 class FileLength(unittest.TestCase):

@@ -12,6 +12,7 @@
 
 #include "amcr/base/errors.h"
 #include "amcr/memory/edge_model.h"
+#include "amcr/memory/edge_model_picture.h"
 #include "amcr/memory/prototype.h"
 #include "amcr/scan/edge_thresholds.h"
 #include "amcr/scan/radial_scan.h"

@@ -22,6 +22,7 @@
 #include "amcr/base/errors.h"
 #include "amcr/base/params.h"
 #include "amcr/memory/edge_model.h"
+#include "amcr/memory/edge_model_picture.h"
 #include "amcr/memory/prototype_memory.h"
 #include "amcr/overlay.h"
 #include "amcr/recognizer.h"

@@ -19,6 +19,7 @@
 #include "amcr/base/affine.h"
 #include "amcr/filter/motion_model.h"
 #include "amcr/filter/particles.h"
+#include "amcr/filter/ray_divergence.h"
 
 namespace amcr
 {
@@ -56,17 +57,6 @@ bool hypothesisTableToImage(const CompetingHypothesis& h, Affine& table_to_image
 /// Returns false when the moved place lies outside the prototype's table.
 bool predictedRays(const Prototype& prototype, const CompetingHypothesis& h, float dx, float dy, float theta,
                    RaySignature& rays);
-
-/// The log-likelihood (nats, >= 0) one ray loses against the hypothesis
-/// that predicts distance `b` (px; 0: no edge) when the image shows `a`:
-/// log p(0) - log p(a - b) under eq. 5 when both have an edge, log p(0) -
-/// log p_invalid (eq. 6) when only one has, 0 when neither has.
-double rayDivergence(float a, float b, const ObservationModel& observation);
-
-/// The expected log-likelihood ratio (nats, >= 0) of an observation `a`
-/// against the hypothesis that predicts `b`: rayDivergence summed over the
-/// rays.
-double scanDivergence(const RaySignature& a, const RaySignature& b, const ObservationModel& observation);
 
 /// A candidate move and what it is expected to tell.
 struct DiscriminativeMove

@@ -10,7 +10,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "amcr/memory/prototype.h"
+#include "amcr/memory/outline_point.h"
 
 namespace amcr
 {
@@ -34,10 +34,4 @@ constexpr double kSilhouetteMidShare = 0.05;
 std::vector<OutlinePoint> templateEdgePoints(const cv::Mat& scan_image, double edge_threshold, double full_strength,
                                              int min_length, const cv::Mat& region);
 
-/// The edge model of `prototype` as a picture in table px, `scale` times
-/// larger: its scan image dimmed, the region where M-particles are seeded
-/// outlined, and every edge point of the score with a short tick along its
-/// normal (towards rising grey for a template, outwards for a silhouette).
-/// What a user checks a template with (`amcr_offline --write-models`).
-cv::Mat drawEdgeModel(const Prototype& prototype, int scale = 3);
 }  // namespace amcr

@@ -10,19 +10,12 @@
 
 #include <opencv2/core.hpp>
 
+#include "amcr/memory/outline_point.h"
 #include "amcr/scan/ray_directions.h"
 
 namespace amcr
 {
 class RadialScanner;
-
-/// A point of the prototype's outline with its outward unit normal, in
-/// table coordinates.
-struct OutlinePoint
-{
-  cv::Point2f position;
-  cv::Point2f normal;
-};
 
 /// How a prototype's image was read (edge_model.h).
 enum class PrototypeKind

@@ -10,19 +10,17 @@
 #include "amcr/base/homography.h"
 #include "amcr/base/params.h"
 #include "amcr/extraction/generic_rivals.h"
-#include "amcr/extraction/object_extractor.h"
+#include "amcr/extraction/object_extraction.h"
+#include "amcr/extraction/recognition_result.h"
+#include "amcr/extraction/track_registry.h"
+#include "amcr/filter/particle_filter.h"
+#include "amcr/scan/radial_scan.h"
+#include "report_rules.h"
 
 namespace amcr
 {
 namespace extraction_steps
 {
-constexpr double kKeepTrackRatio = 0.65;  // a tracked object stays at this share of the decision threshold
-constexpr int kRivalGraceFrames = 10;      // reports in a row a track may fail the rival check's hysteresis
-// Outlines overlapping more are one object: the better is kept. Below a half
-// (an elongated part found twice, slid along its axis, overlaps itself by a
-// third); touching copies overlap by next to nothing.
-constexpr double kSameObjectOverlap = 0.3;
-
 /// An object verified on the image, with the V-particles that support it.
 struct Candidate
 {

@@ -5,7 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "extraction_steps.h"
+#include "report_rules.h"
 
 namespace amcr
 {

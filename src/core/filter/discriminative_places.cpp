@@ -8,8 +8,8 @@
 
 #include "amcr/base/errors.h"
 #include "amcr/base/parallel_for.h"
-#include "amcr/filter/discriminative_attention.h"
 #include "amcr/filter/profile_index.h"
+#include "amcr/filter/ray_divergence.h"
 #include "amcr/filter/relational_update.h"
 #include "amcr/memory/prototype_alignment.h"
 #include "amcr/memory/prototype_memory.h"
