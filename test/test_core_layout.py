@@ -86,6 +86,29 @@ def short(path):
     return os.path.relpath(path, PACKAGE)
 
 
+def find_cycles(graph):
+    """The cycles a depth-first walk of `graph` ({node: nodes it points to}) meets, each as the list
+    of its nodes with the first repeated at the end."""
+    state = collections.defaultdict(int)  # 0 unseen, 1 on the path, 2 done
+    cycles = []
+
+    def visit(node, path):
+        state[node] = 1
+        path.append(node)
+        for nxt in sorted(graph.get(node, ())):
+            if state[nxt] == 1:
+                cycles.append(path[path.index(nxt):] + [nxt])
+            elif state[nxt] == 0:
+                visit(nxt, path)
+        path.pop()
+        state[node] = 2
+
+    for node in sorted(graph):
+        if state[node] == 0:
+            visit(node, [])
+    return cycles
+
+
 class Layers(unittest.TestCase):
     maxDiff = None
 
@@ -113,24 +136,8 @@ class Layers(unittest.TestCase):
         self.assertEqual(upward, [], "\n".join(upward))
 
     def test_no_include_cycle(self):
-        graph = {path: sorted({t for t, _ in edges if t is not None}) for path, edges in include_graph().items()}
-        state = collections.defaultdict(int)  # 0 unseen, 1 on the path, 2 done
-        cycles = []
-
-        def visit(node, path):
-            state[node] = 1
-            path.append(node)
-            for nxt in graph.get(node, []):
-                if state[nxt] == 1:
-                    cycles.append(" -> ".join(short(p) for p in path[path.index(nxt):] + [nxt]))
-                elif state[nxt] == 0:
-                    visit(nxt, path)
-            path.pop()
-            state[node] = 2
-
-        for node in sorted(graph):
-            if state[node] == 0:
-                visit(node, [])
+        graph = {path: {t for t, _ in edges if t is not None} for path, edges in include_graph().items()}
+        cycles = [" -> ".join(short(p) for p in cycle) for cycle in find_cycles(graph)]
         self.assertEqual(cycles, [], "\n".join(cycles))
 
     def test_no_include_cycle_between_units(self):
@@ -144,23 +151,7 @@ class Layers(unittest.TestCase):
             for target, _ in edges:
                 if target is not None and unit(target) != unit(path):
                     graph[unit(path)].add(unit(target))
-        state = collections.defaultdict(int)  # 0 unseen, 1 on the path, 2 done
-        cycles = []
-
-        def visit(node, path):
-            state[node] = 1
-            path.append(node)
-            for nxt in sorted(graph.get(node, [])):
-                if state[nxt] == 1:
-                    cycles.append(" -> ".join(path[path.index(nxt):] + [nxt]))
-                elif state[nxt] == 0:
-                    visit(nxt, path)
-            path.pop()
-            state[node] = 2
-
-        for node in sorted(graph):
-            if state[node] == 0:
-                visit(node, [])
+        cycles = [" -> ".join(cycle) for cycle in find_cycles(graph)]
         self.assertEqual(cycles, [], "\n".join(cycles))
 
     def test_every_public_header_is_in_a_folder_or_the_face(self):

@@ -30,6 +30,7 @@ import rospkg
 import rospy
 import rostest
 from cv_bridge import CvBridge
+from drawn_camera import camera_info
 from ros_waiting import wait_for
 from sensor_msgs.msg import CameraInfo, Image
 from visualization_msgs.msg import MarkerArray
@@ -42,19 +43,6 @@ SCREEN = (1280, 800)
 COLOUR_TOLERANCE = 40        # grey levels per channel: a marker line's shading and antialiasing
 MIN_MARKER_PIXELS = 30       # of the track's colour in the 3D view once an outline is drawn
 MIN_OVERLAY_MATCH = 0.8      # normalised correlation of the overlay image with its panel
-FOCAL = 500.0                # px: the camera_info published beside the frames (poses, hence markers)
-
-
-def camera_info():
-    info = CameraInfo()
-    info.header.frame_id = "camera"
-    info.width, info.height = 640, 480
-    info.distortion_model = "plumb_bob"
-    info.D = [0.0] * 5
-    info.K = [FOCAL, 0, 319.5, 0, FOCAL, 239.5, 0, 0, 1]
-    info.R = [1, 0, 0, 0, 1, 0, 0, 0, 1]
-    info.P = [FOCAL, 0, 319.5, 0, 0, FOCAL, 239.5, 0, 0, 0, 1, 0]
-    return info
 
 
 def read_xwd(data):
@@ -194,7 +182,7 @@ class RvizScreenshot(unittest.TestCase):
         # camera_info and metres_per_pixel (rviz_screenshot.test) give the objects their poses: markers.
         self.assertTrue(wait_for(lambda: self.info_pub.get_num_connections() > 0, self.timeout),
                         "nobody subscribes to /camera/camera_info")
-        self.info_pub.publish(camera_info())
+        self.info_pub.publish(camera_info("camera"))
         frames = sorted(os.listdir(os.path.join(sequence, "frames")))
         stamp = rospy.Time(100.0)
         sent = 0

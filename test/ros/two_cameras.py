@@ -20,6 +20,7 @@ import rosgraph
 import rospy
 import rostest
 import tf2_ros
+from drawn_camera import camera_info
 from ros_waiting import wait_for
 from sensor_msgs.msg import CameraInfo, Image
 
@@ -28,7 +29,6 @@ from amcr.srv import LoadPrototypes
 
 PKG = "amcr"
 SIZE = 200  # prototype image side, px
-FOCAL = 500.0
 METRES_PER_PIXEL = 0.001  # as two_cameras.test gives it
 # Asymmetric outlines in prototype px: no mirror or rotational symmetry.
 SHAPES = {
@@ -71,18 +71,6 @@ def image_msg(array, stamp, frame_id):
     msg.step = msg.width
     msg.data = array.tobytes()
     return msg
-
-
-def camera_info(frame_id):
-    info = CameraInfo()
-    info.header.frame_id = frame_id
-    info.width, info.height = 640, 480
-    info.distortion_model = "plumb_bob"
-    info.D = [0.0] * 5
-    info.K = [FOCAL, 0, 319.5, 0, FOCAL, 239.5, 0, 0, 1]
-    info.R = [1, 0, 0, 0, 1, 0, 0, 0, 1]
-    info.P = [FOCAL, 0, 319.5, 0, 0, FOCAL, 239.5, 0, 0, 0, 1, 0]
-    return info
 
 
 class TwoCameras(unittest.TestCase):
