@@ -53,14 +53,14 @@ TEST_F(MemoryEditsTest, ARebuildKeepsWhatWasTaughtAndRemovedALoadForgetsIt)
 {
   amcr::MemoryEdits edits;
   edits.loaded(dir_.path());
-  edits.taught("crescent", amcr_test::drawPrototype(ShapeId::kCrescent));
-  edits.removed("star");
+  edits.addTaught("crescent", amcr_test::drawPrototype(ShapeId::kCrescent));
+  edits.addRemoval("star");
   const auto rebuilt = edits.rebuild(amcr::Params(), reader());
   EXPECT_EQ(reads_, 1);
   EXPECT_EQ(labels(*rebuilt), (std::vector<std::string>{"arrow", "crescent"}));
 
   // Removing a label taught in this session forgets the shape: a later rebuild does not bring it back.
-  edits.removed("crescent");
+  edits.addRemoval("crescent");
   EXPECT_EQ(labels(*edits.rebuild(amcr::Params(), reader())), (std::vector<std::string>{"arrow"}));
 
   edits.loaded(dir_.path());
@@ -72,13 +72,13 @@ TEST_F(MemoryEditsTest, ARebuildKeepsWhatWasTaughtAndRemovedALoadForgetsIt)
 TEST_F(MemoryEditsTest, WithoutADirectoryOnlyTheTaughtShapesAndNothingLeftIsAnError)
 {
   amcr::MemoryEdits edits;
-  edits.taught("flag", amcr_test::drawPrototype(ShapeId::kFlag));
+  edits.addTaught("flag", amcr_test::drawPrototype(ShapeId::kFlag));
   EXPECT_EQ(labels(*edits.rebuild(amcr::Params(), reader())), (std::vector<std::string>{"flag"}));
   EXPECT_EQ(reads_, 0) << "no directory to read";
 
   edits.loaded(dir_.path());
-  edits.removed("arrow");
-  edits.removed("star");
+  edits.addRemoval("arrow");
+  edits.addRemoval("star");
   EXPECT_THROW(edits.rebuild(amcr::Params(), reader()), amcr::MemoryError);
 }
 
@@ -86,7 +86,7 @@ TEST_F(MemoryEditsTest, ARebuildTakesTheNewTableParameters)
 {
   amcr::MemoryEdits edits;
   edits.loaded(dir_.path());
-  edits.taught("crescent", amcr_test::drawPrototype(ShapeId::kCrescent));
+  edits.addTaught("crescent", amcr_test::drawPrototype(ShapeId::kCrescent));
   const auto before = edits.rebuild(amcr::Params(), reader());
   amcr::Params params;
   params.prototype_size = 64;  // half the default
@@ -133,7 +133,7 @@ TEST_F(MemoryEditsTest, ARemovalThatMustBeRefusedSaysWhy)
   EXPECT_NE(amcr::MemoryEdits::removalRefusal(nullptr, "arrow").find("no label"), std::string::npos);
   EXPECT_EQ(amcr::MemoryEdits::removalRefusal(memory.get(), "arrow"), "");
 
-  edits.removed("star");
+  edits.addRemoval("star");
   const auto one_left = edits.rebuild(amcr::Params(), reader());
   EXPECT_NE(amcr::MemoryEdits::removalRefusal(one_left.get(), "arrow").find("only label"), std::string::npos);
 }

@@ -94,7 +94,7 @@ std::string RecognizerRos::teachShape(const amcr::TeachPrototype::Request& reque
       throw;
     }
     if (saved.empty())
-      edits_.taught(request.label, cut.prototypeImage());
+      edits_.addTaught(request.label, cut.prototypeImage());
     response.prototype_id = static_cast<int>(memory_->size()) - 1;
     return std::string();
   };
@@ -151,7 +151,7 @@ std::string RecognizerRos::removeLabel(const std::string& label, amcr::RemovePro
   prepared.generation = state.generation;
   prepared.swap = [&] {
     swapEditedMemory(tables, false);
-    edits_.removed(label);
+    edits_.addRemoval(label);
     ROS_INFO("removed '%s' (%d prototypes; files untouched): filter restarted, label table version %u", label.c_str(),
              removed, table_version_);
     return std::string();

@@ -45,9 +45,9 @@ public:
   /// A memory of `directory` is in use now: the edits of the previous one are forgotten.
   void loaded(const std::string& directory);
   /// `label` was taught from `image` and not saved (the image is copied).
-  void taught(const std::string& label, const cv::Mat& image);
+  void addTaught(const std::string& label, const cv::Mat& image);
   /// Every prototype of `label` was removed; one taught in this session is forgotten.
-  void removed(const std::string& label);
+  void addRemoval(const std::string& label);
 
   /// The memory of directory() (none when it is empty) read by `read` with
   /// `params`, the labels removed, the prototypes taught added (in the order

@@ -35,12 +35,12 @@ void MemoryEdits::loaded(const std::string& directory)
   removed_.clear();
 }
 
-void MemoryEdits::taught(const std::string& label, const cv::Mat& image)
+void MemoryEdits::addTaught(const std::string& label, const cv::Mat& image)
 {
   taught_.push_back({label, image.clone()});
 }
 
-void MemoryEdits::removed(const std::string& label)
+void MemoryEdits::addRemoval(const std::string& label)
 {
   taught_.erase(std::remove_if(taught_.begin(), taught_.end(), [&label](const Taught& t) { return t.label == label; }),
                 taught_.end());
