@@ -18,6 +18,20 @@ struct MParticleSet;
 struct RelationalAffine;
 struct VRayEnds;
 
+/// How the relational affine of a (V, M) pair is fitted and its deviations
+/// measured (paper 4.1): the part of the observation model that is not the
+/// ray likelihood of eqs. 5-6.
+struct AffineFitRule
+{
+  float min_triangle_area = 0.f;  ///< px^2: a smaller triangle gives no affine
+  float max_affine_scale = 0.f;   ///< an affine scaling more (or less than its inverse) is refused
+  DeviationSpace deviation_space = DeviationSpace::kImage;
+  RayCorrespondence ray_correspondence = RayCorrespondence::kAffine;
+  int affine_refits = 0;          ///< re-estimates of A from the lookups along the fitted A
+
+  explicit AffineFitRule(const Params& params);
+};
+
 class ObservationModel
 {
 public:
@@ -104,10 +118,6 @@ private:
   /// cell i of table_, then (log_far_, 0) and (log p_invalid, 0), so that
   /// every ray term is start + fraction * slope (fraction 0 for the last two).
   std::vector<float> cell_start_slope_;
-  float min_triangle_area_;
-  float max_affine_scale_;
-  DeviationSpace deviation_space_;
-  RayCorrespondence ray_correspondence_;
-  int affine_refits_;
+  AffineFitRule fit_;
 };
 }  // namespace amcr

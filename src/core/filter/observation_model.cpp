@@ -24,6 +24,15 @@ void storeAffine(const RelationalAffine& affine, MParticleSet& m, std::size_t i)
 }
 }  // namespace
 
+AffineFitRule::AffineFitRule(const Params& params)
+  : min_triangle_area(static_cast<float>(params.min_triangle_area))
+  , max_affine_scale(static_cast<float>(params.max_affine_scale))
+  , deviation_space(params.deviation_space)
+  , ray_correspondence(params.ray_correspondence)
+  , affine_refits(params.affine_refits)
+{
+}
+
 ObservationModel::ObservationModel(const Params& params)
   : sigma_w_(params.sigma_w)
   , p_outlier_(params.p_outlier)
@@ -33,11 +42,7 @@ ObservationModel::ObservationModel(const Params& params)
                                         ? params.p_invalid
                                         : params.p_invalid / params.max_ray_length,
                                     1e-300)))
-  , min_triangle_area_(static_cast<float>(params.min_triangle_area))
-  , max_affine_scale_(static_cast<float>(params.max_affine_scale))
-  , deviation_space_(params.deviation_space)
-  , ray_correspondence_(params.ray_correspondence)
-  , affine_refits_(params.affine_refits)
+  , fit_(params)
 {
   const double max_squared = 64.0 * sigma_w_ * sigma_w_;
   const double step = max_squared / (kTableEntries - 1);
@@ -76,14 +81,14 @@ void ObservationModel::measureReference(const PrototypeMemory& memory, const VRa
       continue;
     const std::uint8_t* raw = p.rawDistances(at.x, at.y);
     RelationalAffine affine;
-    if (ray_correspondence_ == RayCorrespondence::kAffine)
+    if (fit_.ray_correspondence == RayCorrespondence::kAffine)
     {
       // The first lookup assumes the V-particle's view shape, turned onto the
       // M-particle's heading; the fixed point of fitCorrectedAffine refines it.
       const float assumed[4] = {m.shape[0][i], m.shape[1][i], m.shape[1][i], m.shape[2][i]};
       float shape[4];
       startingShape(assumed, m.theta[i], v.feature_dx[0], v.feature_dy[0], shape);
-      if (!fitCorrectedAffine(raw, at, shape, v, affine_refits_, min_triangle_area_, max_affine_scale_, affine))
+      if (!fitCorrectedAffine(raw, at, shape, v, fit_.affine_refits, fit_.min_triangle_area, fit_.max_affine_scale, affine))
         continue;
       linearPart(affine, shape);
       storeAffine(affine, m, i);
@@ -93,7 +98,7 @@ void ObservationModel::measureReference(const PrototypeMemory& memory, const VRa
     const int bin = angleToBin(m.theta[i]);
     float table_x[kTriangleRays], table_y[kTriangleRays];
     if (!tableTriangle(raw, at, bin, table_x, table_y) ||
-        !fitRelationalAffine(table_x, table_y, v, min_triangle_area_, max_affine_scale_, affine))
+        !fitRelationalAffine(table_x, table_y, v, fit_.min_triangle_area, fit_.max_affine_scale, affine))
       continue;
     storeAffine(affine, m, i);
     m.log_likelihood[i] = logLikelihood(v, raw, at, bin, affine);
@@ -137,7 +142,7 @@ float ObservationModel::featureRaysLogLikelihood(const VRayEnds& v, const Relati
       continue;
     }
     const float dw_squared =
-        squaredDeviation(affine, deviation_space_, table_x, table_y, v.feature_x[k], v.feature_y[k]);
+        squaredDeviation(affine, fit_.deviation_space, table_x, table_y, v.feature_x[k], v.feature_y[k]);
     log_l += logRayFromSquared(dw_squared);
   }
   return log_l;

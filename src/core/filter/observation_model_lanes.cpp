@@ -143,7 +143,7 @@ void fitAffineLanes(const TableEndLanes& ends, const VRayEnds& v, float min_area
 void ObservationModel::measure(const PrototypeMemory& memory, const VRayEnds& v, MParticleSet& m, std::size_t begin,
                                std::size_t end) const
 {
-  if (ray_correspondence_ == RayCorrespondence::kAffine && affine_refits_ > 0)
+  if (fit_.ray_correspondence == RayCorrespondence::kAffine && fit_.affine_refits > 0)
   {
     measureReference(memory, v, m, begin, end);
     return;
@@ -189,7 +189,7 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
   std::int32_t rounded[kLanes];
   roundedBins(m.theta.data() + begin, lanes, rounded);
   TableEndLanes ends;
-  const bool corrected = ray_correspondence_ == RayCorrespondence::kAffine;
+  const bool corrected = fit_.ray_correspondence == RayCorrespondence::kAffine;
   if (corrected && v.triangle_valid)
     correctedTriangleEnds(m, begin, lanes, raw, at, v, bins, ends);
   for (std::size_t l = 0; l < lanes && v.triangle_valid && !corrected; ++l)
@@ -216,7 +216,7 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
   else
   {
     AffineLanes affine;
-    fitAffineLanes(ends, v, min_triangle_area_, max_affine_scale_, lanes, affine);
+    fitAffineLanes(ends, v, fit_.min_triangle_area, fit_.max_affine_scale, lanes, affine);
     if (corrected)
       correctedFeatureEnds(affine, lanes, raw, at, v, valid_rays, valid_count, bins, ends);
 
@@ -238,7 +238,7 @@ void ObservationModel::measureBlock(const PrototypeMemory& memory, const VRayEnd
       {
         const float table_x = ends.ray_x[j][l], table_y = ends.ray_y[j][l];
         float dx, dy;
-        if (deviation_space_ == DeviationSpace::kImage)
+        if (fit_.deviation_space == DeviationSpace::kImage)
         {
           dx = affine.b[0][l] * table_x + affine.b[1][l] * table_y + affine.b[2][l] - image_x;
           dy = affine.b[3][l] * table_x + affine.b[4][l] * table_y + affine.b[5][l] - image_y;
