@@ -5,7 +5,6 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "amcr/memory/edge_model.h"
-#include "amcr/scan/radial_scan.h"
 
 namespace amcr_bench
 {
@@ -15,24 +14,16 @@ PrototypeImage prototypeImage(const std::string& label, const cv::Mat& image)
   cv::Mat grey, alpha;
   try
   {
-    grey = amcr::toGray8(image);
-    if (image.channels() == 4)
-    {
-      cv::extractChannel(image, alpha, 3);
-      alpha = amcr::toGray8(alpha);
-    }
+    amcr::prototypeGreyAndAlpha(image, grey, alpha);  // as amcr::Prototype reads it
   }
   catch (const std::exception& e)
   {
     throw std::invalid_argument("prototype '" + label + "': " + e.what());
   }
-  // As amcr::Prototype: an alpha channel opaque everywhere says nothing.
-  if (!alpha.empty() && cv::countNonZero(alpha < 128) == 0)
-    alpha.release();
   double lo = 0, hi = 0;
   cv::minMaxLoc(grey, &lo, &hi);
   const bool flat = hi - lo < 1.0;
-  if (alpha.empty() && (flat || amcr::isSilhouette(grey)))
+  if ((flat && alpha.empty()) || !amcr::readAsTemplate(grey, alpha))
   {
     p.mask = grey;
     return p;

@@ -130,15 +130,14 @@ std::vector<cv::Point2f> templateModelPoints(const PrototypeImage& p)
 }
 
 /// The frame's edge points as a template's are found (amcr::templateEdgePoints with amcr's default
-/// parameters and chains of 8 px, as amcr::Prototype reads a template), frame px.
+/// parameters and amcr::kMinTemplateChain, as amcr::Prototype reads a template), frame px.
 std::vector<cv::Point2f> frameEdgePoints(const cv::Mat& grey)
 {
-  constexpr int kMinChain = 8;  // px: amcr's template reading drops shorter chains as texture
   const amcr::Params params;
   std::vector<cv::Point2f> points;
   for (const amcr::OutlinePoint& o : amcr::templateEdgePoints(amcr::prepareScanImage(grey, params.blur_sigma),
                                                               params.edge_threshold, params.edge_full_strength,
-                                                              kMinChain, cv::Mat()))
+                                                              amcr::kMinTemplateChain, cv::Mat()))
     points.push_back(o.position);
   return points;
 }

@@ -23,6 +23,20 @@ bool isSilhouette(const cv::Mat& grey);
 /// The share of an image's pixels that may lie off a silhouette's two grey levels.
 constexpr double kSilhouetteMidShare = 0.05;
 
+/// An image as a prototype reads it: its grey (toGray8) and, for an image
+/// with four channels, its alpha channel as 8-bit grey, left empty when it
+/// is opaque everywhere (it says nothing then). Throws InputError for an
+/// image toGray8 refuses.
+void prototypeGreyAndAlpha(const cv::Mat& image, cv::Mat& grey, cv::Mat& alpha);
+
+/// Whether the image of `grey` and `alpha` (prototypeGreyAndAlpha) is read
+/// as a grey template: it has an alpha channel, or it is no silhouette.
+bool readAsTemplate(const cv::Mat& grey, const cv::Mat& alpha);
+
+/// Px: a template's chains of edge pixels shorter than this are texture, not
+/// its shape (templateEdgePoints' `min_length` as a prototype reads it).
+constexpr int kMinTemplateChain = 8;
+
 /// The edge points of a template's scan image (`scan_image`, CV_8UC1, the
 /// table's size): the pixels whose 2 px grey step along the gradient reaches
 /// `thresholds` there and is a maximum along it (non-maximum suppression, as

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amcr/scan/edge_thresholds.h"
+#include "amcr/scan/radial_scan.h"
 
 namespace amcr
 {
@@ -114,4 +115,19 @@ std::vector<OutlinePoint> templateEdgePoints(const cv::Mat& scan_image, double e
     }
   return points;
 }
+
+void prototypeGreyAndAlpha(const cv::Mat& image, cv::Mat& grey, cv::Mat& alpha)
+{
+  grey = toGray8(image);
+  alpha.release();
+  if (image.channels() == 4)
+  {
+    cv::extractChannel(image, alpha, 3);
+    alpha = toGray8(alpha);
+    if (cv::countNonZero(alpha < 128) == 0)
+      alpha.release();
+  }
+}
+
+bool readAsTemplate(const cv::Mat& grey, const cv::Mat& alpha) { return !alpha.empty() || !isSilhouette(grey); }
 }  // namespace amcr

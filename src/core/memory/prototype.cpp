@@ -17,7 +17,6 @@ namespace
 {
 constexpr float kMaxTableDistance = 127.f;  // the largest distance a uint8 in 0.5 px units holds
 constexpr double kOutlineSpacing = 2.0;     // px between resampled outline points
-constexpr int kMinTemplateChain = 8;        // px: shorter chains of a template's edge pixels are texture
 constexpr std::size_t kMinTemplatePoints = 24;  // a template's edge points: fewer fix no shape
 
 /// Foreground mask (255 = shape) of a silhouette of either polarity: the
@@ -63,12 +62,7 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
   cv::Mat grey, alpha;
   try
   {
-    grey = toGray8(image);
-    if (image.channels() == 4)
-    {
-      cv::extractChannel(image, alpha, 3);
-      alpha = toGray8(alpha);
-    }
+    prototypeGreyAndAlpha(image, grey, alpha);
   }
   catch (const InputError& e)
   {
@@ -79,13 +73,9 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
   if (hi - lo < 1.0)
     throw MemoryError("prototype '" + label + "' has no edges: the image is uniform");
   original_size_ = grey.size();
-  // An alpha channel opaque everywhere says nothing: the image is read as if it had none.
-  if (!alpha.empty() && cv::countNonZero(alpha < 128) == 0)
-    alpha.release();
 
-  const cv::Rect box = (alpha.empty() && isSilhouette(grey))
-                           ? readSilhouette(grey, size)
-                           : readTemplate(grey, alpha, size, edge_threshold, edge_full_strength);
+  const cv::Rect box = readAsTemplate(grey, alpha) ? readTemplate(grey, alpha, size, edge_threshold, edge_full_strength)
+                                                   : readSilhouette(grey, size);
   const int margin = tableMargin(size);
   const int w = mask_.cols - 2 * margin, h = mask_.rows - 2 * margin;
 
