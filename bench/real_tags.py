@@ -30,7 +30,6 @@ frame (amcr: the median over its frames), and for amcr the first frame each tag 
 Needs libapriltag3 (Debian: `apt-get install libapriltag3`) and visp-images-data; says which is
 missing and exits 2 otherwise.
 """
-import argparse
 import ctypes
 import ctypes.util
 import json
@@ -40,13 +39,12 @@ import sys
 import cv2
 import numpy as np
 
-from still_photo import BASELINES, grey_photo, parse_methods, parse_seeds, run_baselines, run_still, write_still_suite
+from still_photo import still_photo_parser, BASELINES, grey_photo, parse_methods, parse_seeds, run_baselines, run_still, write_still_suite
 
 PHOTO_DIR = "/usr/share/visp-images-data/ViSP-images/AprilTag"
 FAMILY = "tag36h11"
 CELL_PX = 20       # template px per tag cell: 10 cells (the white border included) = 200 px
 MARGIN_PX = 2      # transparent px around the tag: the alpha channel makes the image a template
-HERE = os.path.dirname(os.path.abspath(__file__))
 TARGET_SIZE = (45, 95)  # the baselines' pose range (see above)
 ANISOTROPY = 2.3
 RIGHT_PX, CLOSE_PX = 5.0, 1.0  # corner errors: a right report, and one within the aims' 1 px
@@ -172,14 +170,8 @@ def describe(row, tags):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    parser.add_argument("--out", default=os.path.join(HERE, "..", ".build", "real-tags"))
-    parser.add_argument("--bin", default=os.path.join(HERE, "..", ".build", "ws", "devel", "lib", "amcr"))
-    parser.add_argument("--config", default="", help="parameter file for amcr_offline (default: its defaults)")
+    parser = still_photo_parser(__doc__, "real-tags", "1-3")
     parser.add_argument("--methods", default="amcr", help="amcr, line2d and/or sc, comma-separated")
-    parser.add_argument("--seeds", default="1-3")
-    parser.add_argument("--frames", type=int, default=60)
     parser.add_argument("--extra", type=int, default=0, help="other ids of the family added to the memory")
     parser.add_argument("--seed-memory", type=int, default=1)
     parser.add_argument("--as-silhouettes", action="store_true",

@@ -23,7 +23,6 @@ and 6.9 px (graf) off on average, which bounds their corner error from below.
 
     bench/real_templates.py --out .build/real-templates [--methods amcr,line2d,sc] [--seeds 1-3] [--frames 60]
 """
-import argparse
 import json
 import os
 import sys
@@ -31,10 +30,9 @@ import sys
 import cv2
 import numpy as np
 
-from still_photo import BASELINES, parse_methods, parse_seeds, run_baselines, run_still, write_still_suite
+from still_photo import still_photo_parser, BASELINES, parse_methods, parse_seeds, run_baselines, run_still, write_still_suite
 
 DATA = "/usr/share/doc/opencv-doc/examples/data"
-HERE = os.path.dirname(os.path.abspath(__file__))
 GRAF_CUT = (250, 150, 300, 300)  # x, y, width, height in graf1.png
 # The baselines' pose range per pair (see above): target size (min, max) px and anisotropy.
 POSE_RANGE = {"box": ((150, 230), 1.4), "graf": ((195, 255), 1.9)}
@@ -88,14 +86,8 @@ def describe(row):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    parser.add_argument("--out", default=os.path.join(HERE, "..", ".build", "real-templates"))
-    parser.add_argument("--bin", default=os.path.join(HERE, "..", ".build", "ws", "devel", "lib", "amcr"))
-    parser.add_argument("--config", default="")
+    parser = still_photo_parser(__doc__, "real-templates", "1-3")
     parser.add_argument("--methods", default="amcr", help="amcr, line2d and/or sc, comma-separated")
-    parser.add_argument("--seeds", default="1-3")
-    parser.add_argument("--frames", type=int, default=60)
     args = parser.parse_args()
     methods = parse_methods(args.methods)
     if not os.path.isdir(DATA):

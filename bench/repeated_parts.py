@@ -16,7 +16,6 @@ The parts are 52-60 px, below the default min_object_size (64 px), and 36 is mor
 with max_objects under 36 reports: the --config given should set min_object_size (40 here) and
 max_objects; without one the script writes one with min_object_size 40 and the defaults otherwise.
 """
-import argparse
 import json
 import os
 import sys
@@ -24,7 +23,7 @@ import sys
 import cv2
 import numpy as np
 
-from still_photo import parse_seeds, run_still
+from still_photo import still_photo_parser, parse_seeds, run_still
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SIDE = 160                    # the part's template image, px
@@ -94,14 +93,8 @@ def score(objects, truth):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    parser.add_argument("--out", default=os.path.join(HERE, "..", ".build", "repeated-parts"))
-    parser.add_argument("--bin", default=os.path.join(HERE, "..", ".build", "ws", "devel", "lib", "amcr"))
-    parser.add_argument("--config", default="", help="parameter file for amcr_offline (see above)")
+    parser = still_photo_parser(__doc__, "repeated-parts", "1-2", "parameter file for amcr_offline (see above)")
     parser.add_argument("--draws", default="1-3")
-    parser.add_argument("--seeds", default="1-2")
-    parser.add_argument("--frames", type=int, default=60)
     args = parser.parse_args()
 
     prototypes = os.path.join(args.out, "prototypes")

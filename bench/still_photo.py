@@ -1,6 +1,7 @@
 """A still photo for the benchmark's real-photo scripts (real_tags.py, real_templates.py): amcr_offline
 on the photo repeated for a number of frames, one run per recognizer seed; and the per-frame baselines
 of amcr_evaluate on the photo once, as a suite of one sequence of one frame."""
+import argparse
 import json
 import os
 import shutil
@@ -11,6 +12,23 @@ import numpy as np
 
 BASELINES = ("line2d", "sc")  # the per-frame methods of amcr_evaluate these scripts run
 SEQUENCE = "photo"             # the suite's one sequence
+
+
+REPO = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+
+
+def still_photo_parser(doc, out_name, seeds, config_help="parameter file for amcr_offline (default: its defaults)"):
+    """The options every still-photo script takes: --out (default .build/<out_name>), --bin (the
+    workspace's binaries), --config, --seeds (default `seeds`) and --frames; the script's docstring
+    `doc` as its description and epilog."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=doc)
+    parser.add_argument("--out", default=os.path.join(REPO, ".build", out_name))
+    parser.add_argument("--bin", default=os.path.join(REPO, ".build", "ws", "devel", "lib", "amcr"))
+    parser.add_argument("--config", default="", help=config_help)
+    parser.add_argument("--seeds", default=seeds)
+    parser.add_argument("--frames", type=int, default=60)
+    return parser
 
 
 def parse_seeds(text):
