@@ -175,7 +175,7 @@ class Layers(unittest.TestCase):
 # underscore, the project's style; plain structs of named fields are not counted). The classes above
 # it today are to be cut into collaborators with state of their own; until then each may not grow.
 MAX_MEMBERS = 12
-OVER_MAX_MEMBERS = {"ParticleFilter": 22, "Prototype": 16}
+OVER_MAX_MEMBERS = {"Prototype": 16}
 CLASS = re.compile(r"^(?:class|struct)\s+(\w+)[^;{]*\{", re.M)
 MEMBER = re.compile(r"^\s+(?!return\b|using\b|friend\b|typedef\b)[\w:<>,\s*&\[\]]+?\b(\w+_)\s*"
                     r"(?:=[^;]*|\{[^;]*\}|\[[^\]]*\])?;")

@@ -32,12 +32,18 @@ public:
   /// The parameters it was built for: a filter takes it only with the same ones.
   const Params& params() const { return params_; }
   const std::shared_ptr<const PrototypeMemory>& memory() const { return memory_; }
+  /// The context prior over the memory's prototypes.
+  const PrototypePrior& prior() const { return prior_; }
+  /// The 8-ray proposal index; null when index_share is 0.
+  const std::shared_ptr<const ProposalIndex>& index() const { return index_; }
+  /// The radial-profile index; null when index_share is 0 or profile_index is off.
+  const std::shared_ptr<const ProfileIndex>& profileIndex() const { return profile_index_; }
+  /// The look-alike pairs; null when neither the discriminative moves nor competing fits use them.
+  const std::shared_ptr<const DiscriminativePlaces>& places() const { return places_; }
   /// What the indexes' build left out (a line per prototype).
   const std::vector<std::string>& warnings() const { return warnings_; }
 
 private:
-  friend class ParticleFilter;  // swaps these parts with its own
-
   Params params_;
   std::shared_ptr<const PrototypeMemory> memory_;
   PrototypePrior prior_;

@@ -82,6 +82,14 @@ struct VParticle
   bool discriminating = false;
 };
 
+/// Log V-weight that the verification of a V-particle's interpretation adds
+/// to its evidence (paper 4.3, attention feedback).
+struct EvidenceBonus
+{
+  int v = -1;  ///< index of the V-particle
+  double log_weight = 0.0;
+};
+
 /// Where the optical flow takes one V-particle into the current frame.
 struct VParticleMove
 {

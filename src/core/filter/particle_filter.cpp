@@ -1,10 +1,7 @@
-// The particle filter: set-up, one V-particle's iteration, the evidence and
-// the moves from outside (optical flow). Where new particles start is in
-// particle_filter_seeding.cpp, the mixture proposal from the index in
-// particle_filter_proposals.cpp, what the held objects change in
-// particle_filter_held_objects.cpp, the measurement in
-// particle_filter_measurement.cpp, the resampling in
-// particle_filter_resampling.cpp.
+// The particle filter: set-up, the memory swaps, one V-particle's iteration
+// and the V-resampling in the order of paper 3.6, and the moves from outside
+// (optical flow). What each step does is in its collaborator
+// (particle_filter.h).
 #include "amcr/filter/particle_filter.h"
 
 #include <algorithm>
@@ -14,6 +11,7 @@
 
 #include "amcr/base/errors.h"
 #include "amcr/base/parallel_for.h"
+#include "amcr/filter/relational_update.h"
 #include "amcr/scan/ray_directions.h"
 
 namespace amcr
@@ -24,32 +22,20 @@ ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const Proto
 }
 
 ParticleFilter::ParticleFilter(FilterMemory memory)
-  : params_(memory.params_)
-  , memory_(std::move(memory.memory_))
-  , prior_(std::move(memory.prior_))
-  , policy_(std::make_unique<ReflectAtEdgesPolicy>(params_.v_step, params_.reflection_jitter))
-  , discriminator_(params_.v_step, params_.discriminative_min_gain)
-  , observation_(params_)
-  , motion_(params_)
-  , rng_(params_.seed)
-  , index_(std::move(memory.index_))
-  , profile_index_(std::move(memory.profile_index_))
-  , places_(std::move(memory.places_))
-  , index_warnings_(std::move(memory.warnings_))
+  : memory_(std::move(memory))
+  , attention_(params())
+  , observation_(params())
+  , motion_(params())
+  , seeder_(params(), observation_.logInvalid())
+  , resampler_(params())
+  , held_(params())
 {
   reset();
 }
 
-void ParticleFilter::setPolicy(std::unique_ptr<ExplorationPolicy> policy)
-{
-  if (!policy)
-    throw ParameterError("the exploration policy must not be null");
-  policy_ = std::move(policy);
-}
-
 void ParticleFilter::setMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
-  setMemory(FilterMemory(params_, std::move(memory)));
+  setMemory(FilterMemory(params(), std::move(memory)));
 }
 
 FilterMemory ParticleFilter::setMemory(FilterMemory memory)
@@ -59,50 +45,71 @@ FilterMemory ParticleFilter::setMemory(FilterMemory memory)
   return memory;
 }
 
+namespace
+{
+MemoryError notAnExtension(const PrototypeMemory& current)
+{
+  return MemoryError("the new memory does not extend the current one (its first " + std::to_string(current.size()) +
+                     " prototypes must be the current ones)");
+}
+}  // namespace
+
 void ParticleFilter::extendMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
-  if (!memory || !memory_->isPrefixOf(*memory))  // checked before the build
-    throw MemoryError("the new memory does not extend the current one (its first " +
-                      std::to_string(memory_->size()) + " prototypes must be the current ones)");
-  extendMemory(FilterMemory(params_, std::move(memory)));
+  if (!memory || !this->memory().isPrefixOf(*memory))  // checked before the build
+    throw notAnExtension(this->memory());
+  extendMemory(FilterMemory(params(), std::move(memory)));
 }
 
 FilterMemory ParticleFilter::extendMemory(FilterMemory memory)
 {
-  if (!memory_->isPrefixOf(*memory.memory_))
-    throw MemoryError("the new memory does not extend the current one (its first " +
-                      std::to_string(memory_->size()) + " prototypes must be the current ones)");
+  if (!this->memory().isPrefixOf(*memory.memory()))
+    throw notAnExtension(this->memory());
   swapMemory(memory);
   return memory;
 }
 
 void ParticleFilter::swapMemory(FilterMemory& memory)
 {
-  if (!sameParameters(memory.params_, params_))
+  if (!sameParameters(memory.params(), params()))
     throw ParameterError("the memory was made ready for other parameters than the filter's");
-  std::swap(memory_, memory.memory_);
-  std::swap(prior_, memory.prior_);
-  std::swap(index_, memory.index_);
-  std::swap(profile_index_, memory.profile_index_);
-  std::swap(places_, memory.places_);
-  std::swap(index_warnings_, memory.warnings_);
+  std::swap(memory_, memory);
 }
 
 void ParticleFilter::reset()
 {
-  rng_ = Rng(params_.seed);
+  const Params& p = params();
+  resampler_.reset(p.seed);
   work_.clear();
-  for (Rng& stream : Rng::streams(params_.seed, static_cast<std::size_t>(params_.num_v_particles)))
+  for (Rng& stream : Rng::streams(p.seed, static_cast<std::size_t>(p.num_v_particles)))
     work_.emplace_back(stream);
   v_.clear();
   m_count_.clear();
   m_ = MParticleSet();
-  m_scratch_ = MParticleSet();
-  leading_.clear();
   image_size_ = cv::Size();
-  held_mask_.release();
-  held_v_.clear();
-  held_prototypes_.clear();
+  held_.clear();
+}
+
+void ParticleFilter::seed(const RadialScanner& scanner)
+{
+  if (scanner.image().size() != image_size_)
+    held_.clear();  // outlines of another image size
+  image_size_ = scanner.image().size();
+  const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
+  v_.assign(params().num_v_particles, VParticle());
+  m_count_.assign(v_.size(), static_cast<int>(per_v));
+  m_.resize(v_.size() * per_v);
+  resampler_.scratch().resize(m_.size());
+  const SeedingScene scene = seedingScene();
+  parallelFor(static_cast<int>(v_.size()), resolveThreads(params().num_threads), [&](int i) {
+    seeder_.seedVAndM(v_[i], m_, i * per_v, (i + 1) * per_v, scanner, scene, work_[i]);
+  });
+  resampler_.clearLeading();
+}
+
+void ParticleFilter::setHeldObjects(const std::vector<HeldObject>& held)
+{
+  held_.set(held, image_size_, memory_.prior(), memory().size());
 }
 
 // ---------------------------------------------------------------------------
@@ -112,32 +119,10 @@ void ParticleFilter::update(int v_index, const RadialScanner& scanner)
 {
   VParticle& v = v_[v_index];
   const MRange r = mRange(v_index);
-
-  // Control: to where competing clusters disagree (paper 4.3's feedback
-  // control, discriminative_attention.h), else from the policy; the
-  // M-particles follow through their A (paper 4.2).
+  // Control (paper 4.3), then the M-particles follow through their A (paper 4.2).
   Rng& rng = work_[v_index].rng;
   const double heading_before = v.theta;
-  Control u;
-  v.competing = CompetingHypotheses();
-  v.discriminating = false;
-  if (params_.discriminative_moves || params_.competing_fits > 0)
-  {
-    const CompetingHypotheses competing =
-        competingHypotheses(m_, r, v.x, v.y, static_cast<float>(params_.cluster_radius),
-                            static_cast<float>(params_.discriminative_min_share));
-    if (decidingBetweenLookAlikes(competing, static_cast<float>(params_.cluster_min_share)))
-      v.competing = competing;
-    DiscriminativeMove move;
-    if (params_.discriminative_moves &&
-        discriminator_.choose(v, v.competing, *memory_, observation_, image_size_, places_.get(), move))
-    {
-      u = move.control;
-      v.discriminating = true;
-    }
-  }
-  if (!v.discriminating)
-    u = policy_->decide(v, scanner, rng);
+  const Control u = attention_.decide(v, m_, r, memory_, observation_, image_size_, scanner, rng);
   MotionModel::moveV(v, u);
   v.theta = static_cast<float>(wrapAngle(v.theta));
   motion_.moveM(m_, r.begin, r.end, heading_before, u, rng);
@@ -145,14 +130,53 @@ void ParticleFilter::update(int v_index, const RadialScanner& scanner)
 
   measure(v_index, scanner);
   accumulateEvidence(v_index);
-  resampleM(v_index);
+  m_count_[v_index] = resampler_.resampleM(v, m_, r.begin, static_cast<int>(mRange(v_index).size()),
+                                           mParticlesPerV(), seeder_, seedingScene(), work_[v_index]);
 }
 
 // The V-particles are independent within an iteration (paper 3.6): each
 // writes only its own particles and scratch, and draws from its own stream.
 void ParticleFilter::updateRange(int first, int last, const RadialScanner& scanner)
 {
-  parallelFor(last - first, resolveThreads(params_.num_threads), [&](int k) { update(first + k, scanner); });
+  parallelFor(last - first, resolveThreads(params().num_threads), [&](int k) { update(first + k, scanner); });
+}
+
+// The measurement of one V-particle: its ray scans, then the update of its
+// relational particles (v, m) by the observation model (the triangle affine
+// of paper 4.1 and the likelihood of eqs. 5-6, in relational_update.h).
+void ParticleFilter::measure(int v_index, const RadialScanner& scanner)
+{
+  VParticle& v = v_[v_index];
+  // The V-particle's measurement: 8 feature rays (k * 45 deg) and the two
+  // further triangle rays (120, 240 deg); ray 0 serves both.
+  float v_dist[kFeatureRays + 2];
+  bool v_valid[kFeatureRays + 2];
+  RayHit hits[kFeatureRays];
+  scanFeatureRays(scanner, v.x, v.y, v.theta, hits);
+  for (int k = 0; k < kFeatureRays; ++k)
+  {
+    v_dist[k] = hits[k].distance;
+    v_valid[k] = hits[k].valid;
+  }
+  v.rays = raySignature(hits);
+  VWorkspace& work = work_[v_index];
+  seeder_.findCandidates(v, scanner, memory_, work);  // for the M-particles this iteration seeds
+  for (int t = 1; t < kTriangleRays; ++t)
+  {
+    const RayHit hit = scanner.scanAngle(v.x, v.y, v.theta + t * kTriangleBinStep * kBinAngle);
+    v_dist[kFeatureRays + t - 1] = hit.distance;
+    v_valid[kFeatureRays + t - 1] = hit.valid;
+  }
+
+  // Spec "Motion model": an M-particle that has left its prototype is
+  // re-seeded, in index order, before the update.
+  const MRange r = mRange(v_index);
+  const SeedingScene scene = seedingScene();
+  for (std::size_t i = r.begin; i < r.end; ++i)
+    if (!insideTable(memory()[m_.prototype[i]], nearestTablePixel(m_.x[i], m_.y[i])))
+      seeder_.seedM(m_, i, m_.prototype[i], v, scene, work);
+  // The relational update of paper 4.1 and eqs. 5-6 (ObservationModel::measure).
+  observation_.measure(memory(), rayEnds(v, v_dist, v_valid), m_, r.begin, r.end);
 }
 
 // Evidence that v lies on an interpretable shape: the log of its
@@ -178,7 +202,58 @@ void ParticleFilter::addEvidence(const std::vector<EvidenceBonus>& evidence)
     v_[bonus.v].log_evidence_sum += bonus.log_weight;
 }
 
-void ParticleFilter::setLeading(std::vector<LeadingHypothesis> leading) { leading_ = std::move(leading); }
+// ---------------------------------------------------------------------------
+// V-resampling: the Resampler draws the next generation, the filter copies it
+
+std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
+                                           const std::vector<std::vector<int>>& object_v_particles)
+{
+  const int n = static_cast<int>(v_.size());
+  const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
+  const VGeneration generation = resampler_.drawV(v_, object_v_particles, held_);
+  MParticleSet& next_m = resampler_.scratch();
+  const SeedingScene scene = seedingScene();
+  // Each slot is independent: it reads the old particles and writes its
+  // own, with its own stream.
+  std::vector<VParticle> next(n);
+  std::vector<int> next_count(n, static_cast<int>(per_v));
+  parallelFor(n, resolveThreads(params().num_threads), [&](int k) {
+    const int from = generation.source[k];
+    const std::size_t begin = static_cast<std::size_t>(k) * per_v, end = begin + per_v;
+    if (from < 0)
+    {
+      seeder_.seedVAndM(next[k], next_m, begin, end, scanner, scene, work_[k]);
+      return;
+    }
+    next[k] = v_[from];
+    next_count[k] = m_count_[from];
+    for (std::size_t j = 0; j < static_cast<std::size_t>(m_count_[from]); ++j)
+      next_m.copyFrom(m_, static_cast<std::size_t>(from) * per_v + j, begin + j);
+    const std::size_t copied_end = begin + static_cast<std::size_t>(next_count[k]);
+    if (generation.turned[k])
+    {
+      // A copy turns to a random heading so the copies explore apart; its
+      // M-particles turn with it through their A.
+      Rng& rng = work_[k].rng;
+      const Control turn{rng.uniform(-M_PI, M_PI), 0.0};
+      motion_.moveM(next_m, begin, copied_end, next[k].theta, turn, rng);
+      MotionModel::moveV(next[k], turn);
+      next[k].theta = static_cast<float>(wrapAngle(next[k].theta));
+    }
+  });
+  for (auto& v : next)
+  {
+    v.log_evidence_sum = 0.0;
+    v.evidence_count = 0;
+  }
+  v_ = std::move(next);
+  m_count_ = std::move(next_count);
+  std::swap(m_, next_m);
+  return generation.source;
+}
+
+// ---------------------------------------------------------------------------
+// The sets and moves from outside
 
 MRange ParticleFilter::mRange(int v) const
 {
@@ -206,9 +281,6 @@ double ParticleFilter::meanMParticles() const
   return sum / m_count_.size();
 }
 
-// ---------------------------------------------------------------------------
-// Moves from outside
-
 int ParticleFilter::applyFlow(const std::vector<VParticleMove>& moves, const RadialScanner& scanner)
 {
   const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
@@ -233,9 +305,10 @@ int ParticleFilter::applyFlow(const std::vector<VParticleMove>& moves, const Rad
         break;
     }
   }
-  parallelFor(static_cast<int>(lost.size()), resolveThreads(params_.num_threads), [&](int k) {
+  const SeedingScene scene = seedingScene();
+  parallelFor(static_cast<int>(lost.size()), resolveThreads(params().num_threads), [&](int k) {
     const std::size_t i = static_cast<std::size_t>(lost[k]);
-    seedVAndM(v_[i], m_, i * per_v, (i + 1) * per_v, scanner, work_[i]);
+    seeder_.seedVAndM(v_[i], m_, i * per_v, (i + 1) * per_v, scanner, scene, work_[i]);
     m_count_[i] = static_cast<int>(per_v);
   });
   return static_cast<int>(lost.size());
