@@ -137,8 +137,9 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   const double extraction_start = budget_.now();
   result.times.updates_ms = extraction_start - phase_start;
   // min_object_size is in input px (what a user measures in the image).
-  Extraction extraction =
-      extractObjects(filter_, scanner, tracker_.tracks(), params_.min_object_size * scale_.factor());
+  Params extraction_params = params_;
+  extraction_params.min_object_size = params_.min_object_size * scale_.factor();
+  Extraction extraction = extractObjects(readFilter(filter_), scanner, tracker_.tracks(), extraction_params);
   filter_.addEvidence(extraction.feedback.evidence);
   filter_.setLeading(std::move(extraction.feedback.leading));
   for (const VParticleCluster& c : extraction.clusters)

@@ -1,5 +1,6 @@
-// Result extraction (spec "Output"): a function of the particle filter's
-// state (read-only), the scanned image and the tracks of the last frame. It
+// Result extraction (spec "Output"): a function of what it reads of the
+// particle filter (FilterReading), the scanned image and the tracks of the
+// last frame. It
 // returns the recognized objects and, explicitly, the feedback the filter
 // takes from them: the verification's evidence per V-particle, the leading
 // hypotheses to inject as M-particles, and the V-particles of each reported
@@ -11,11 +12,17 @@
 #include "amcr/extraction/object_extraction.h"
 #include "amcr/extraction/recognition_result.h"
 #include "amcr/extraction/track_registry.h"
-#include "amcr/filter/particle_filter.h"
+#include "amcr/base/params.h"
+#include "amcr/filter/discriminative_places.h"
+#include "amcr/filter/particles.h"
+#include "amcr/filter/resampler.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/scan/radial_scan.h"
 
 namespace amcr
 {
+class ParticleFilter;
+
 /// What the filter takes from one extraction. The V indices refer to the
 /// filter's V-particles at extraction time: they are to be used before the
 /// next V-resampling (which replaces the V-particles) and not kept.
@@ -49,16 +56,28 @@ struct Extraction
   ExtractionFeedback feedback;
 };
 
+/// What the extraction reads of the particle filter after an iteration,
+/// and nothing else of it.
+struct FilterReading
+{
+  const std::vector<VParticle>& v_particles;
+  /// Each V-particle's dominant cluster (index = V index), as the extraction defines it.
+  std::vector<VParticleCluster> clusters;
+  const PrototypeMemory& memory;
+  const DiscriminativePlaces* look_alikes;  ///< the memory's look-alike pairs; null: none
+};
+
 /// The dominant cluster of each of the filter's V-particles (index = V index),
 /// as the extraction defines it.
 std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter);
+/// What the extraction reads of `filter` now (valid until it changes).
+FilterReading readFilter(const ParticleFilter& filter);
 
 /// Clusters, groups of agreeing V-particles, each group's and each track's
 /// affine refined on the image's edges and verified against it, and the
 /// report with its hysteresis for tracked objects (spec "Output", "Tracking").
-Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks);
-/// The same with the smallest object in px of the scanned image (the
-/// recognizer's working image) in place of params.min_object_size.
-Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks,
-                          double min_object_size);
+/// Lengths in `params` are px of the scanned image (the recognizer's working
+/// image), min_object_size included.
+Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, const TrackRegistry& tracks,
+                          const Params& params);
 }  // namespace amcr

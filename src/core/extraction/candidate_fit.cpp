@@ -61,7 +61,7 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   object.anisotropy = affineAnisotropy(object.prototype_to_image);
   object.viewing_angle_deg = viewingAngleDegrees(object.anisotropy);
   // Support: the converged V-particles whose cluster this transform explains.
-  const std::vector<VParticle>& v = in.filter.vParticles();
+  const std::vector<VParticle>& v = in.v_particles;
   for (const VParticleCluster& c : in.clusters)
   {
     if (c.prototype != prototype || !isConverged(c, in.params.cluster_min_share))

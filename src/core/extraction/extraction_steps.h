@@ -13,7 +13,9 @@
 #include "amcr/extraction/object_extraction.h"
 #include "amcr/extraction/recognition_result.h"
 #include "amcr/extraction/track_registry.h"
-#include "amcr/filter/particle_filter.h"
+#include "amcr/filter/discriminative_places.h"
+#include "amcr/filter/particles.h"
+#include "amcr/memory/prototype_memory.h"
 #include "amcr/scan/radial_scan.h"
 #include "report_rules.h"
 
@@ -46,9 +48,10 @@ using RivalTable = std::vector<std::vector<GenericRival>>;
 /// What every step of the extraction reads.
 struct ExtractionInput
 {
-  const ParticleFilter& filter;
+  const std::vector<VParticle>& v_particles;
+  const std::vector<VParticleCluster>& clusters;  ///< each V-particle's dominant cluster
+  const DiscriminativePlaces* look_alikes;         ///< the memory's look-alike pairs; null: none
   const RadialScanner& scanner;
-  const std::vector<VParticleCluster>& clusters;
   const Params& params;
   const PrototypeMemory& memory;
   const RivalTable* rivals = nullptr;  ///< rivalTable() of the frame's starts; none: fitted where needed

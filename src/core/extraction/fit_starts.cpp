@@ -43,7 +43,7 @@ std::vector<FitStart> lookAlikeStarts(const ExtractionInput& in, const std::vect
                                       const std::vector<Affine>& track_affines)
 {
   std::vector<FitStart> starts;
-  const DiscriminativePlaces* alike = in.filter.lookAlikes();
+  const DiscriminativePlaces* alike = in.look_alikes;
   if (!alike)
     return starts;
   std::vector<std::size_t> by_score(tracks.size());
@@ -85,7 +85,7 @@ void addCompetingStarts(const ExtractionInput& in, const std::vector<Track>& tra
   std::vector<Alternative> alternatives;
   // A look-alike of the V-particle's most likely interpretation: another
   // prototype (another place of the same one is no alternative at this place).
-  for (const VParticle& v : in.filter.vParticles())
+  for (const VParticle& v : in.v_particles)
     for (int k = 1; k < v.competing.count; ++k)
     {
       const CompetingHypothesis& h = v.competing.hypothesis[k];
@@ -122,7 +122,7 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
 {
   // Every group is verified, even a single V-particle's: one that passes
   // seeds the others through injection before it has the support to be reported.
-  std::vector<ObjectHypothesis> hypotheses = groupClusters(in.filter.vParticles(), in.clusters, in.params, 1);
+  std::vector<ObjectHypothesis> hypotheses = groupClusters(in.v_particles, in.clusters, in.params, 1);
   const std::vector<Track>& tracks = registry.tracks();
   std::vector<Affine> track_affines;  // each track's table -> image affine, moved by the flow
   for (const Track& t : tracks)

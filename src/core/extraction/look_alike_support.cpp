@@ -67,7 +67,7 @@ bool winsOnDifferingParts(const ExtractionInput& in, const Candidate& better, co
 // own transform gives; report() then suppresses the other.
 void adoptSupport(const ExtractionInput& in, std::vector<Candidate>& candidates)
 {
-  const std::vector<VParticle>& v = in.filter.vParticles();
+  const std::vector<VParticle>& v = in.v_particles;
   for (std::size_t i = 0; i < candidates.size(); ++i)
   {
     Candidate& better = candidates[i];

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "amcr/extraction/track_registry.h"
+#include "amcr/filter/particle_filter.h"
 #include "extraction_steps.h"
 
 namespace amcr
@@ -28,7 +29,7 @@ constexpr double kLeadingScoreRatio = 0.5;         // a leading hypothesis score
 std::vector<EvidenceBonus> verificationEvidence(const ExtractionInput& in, const std::vector<Candidate>& candidates)
 {
   std::vector<EvidenceBonus> evidence;
-  const std::vector<VParticle>& v = in.filter.vParticles();
+  const std::vector<VParticle>& v = in.v_particles;
   for (const VParticleCluster& c : in.clusters)
   {
     if (!isConverged(c, in.params.cluster_min_share))
@@ -123,23 +124,22 @@ std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter)
                           static_cast<int>(filter.memory().size()), filter.params().cluster_radius);
 }
 
-Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks)
+FilterReading readFilter(const ParticleFilter& filter)
 {
-  return extractObjects(filter, scanner, tracks, filter.params().min_object_size);
+  return FilterReading{filter.vParticles(), filterClusters(filter), filter.memory(), filter.lookAlikes()};
 }
 
-Extraction extractObjects(const ParticleFilter& filter, const RadialScanner& scanner, const TrackRegistry& tracks,
-                          double min_object_size)
+Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, const TrackRegistry& tracks,
+                          const Params& params)
 {
   Extraction extraction;
-  extraction.clusters = filterClusters(filter);
-  Params params = filter.params();
-  params.min_object_size = min_object_size;
-  const ExtractionInput plain{filter, scanner, extraction.clusters, params, filter.memory()};
+  extraction.clusters = std::move(filter.clusters);
+  const std::vector<VParticle>& v = filter.v_particles;
+  const ExtractionInput plain{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory};
   const std::vector<FitStart> starts = fitStarts(plain, tracks);
   // The generic rivals of the prototypes fitted in this frame, once each.
   const RivalTable rivals = rivalTable(plain, starts);
-  const ExtractionInput in{filter, scanner, extraction.clusters, params, filter.memory(), &rivals};
+  const ExtractionInput in{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory, &rivals};
   std::vector<Candidate> candidates = fitCandidates(in, starts);
   verifyRivals(in, candidates);
   if (in.params.competing_fits > 0)
