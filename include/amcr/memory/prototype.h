@@ -11,11 +11,20 @@
 #include <opencv2/core.hpp>
 
 #include "amcr/memory/outline_point.h"
+#include "amcr/memory/radial_table.h"
 #include "amcr/scan/ray_directions.h"
 
 namespace amcr
 {
 class RadialScanner;
+
+/// Where the original image lies in a prototype's table image.
+struct TablePlacement
+{
+  cv::Size original_size;          ///< px
+  cv::Matx23d original_to_table;   ///< OpenCV pixel-centre convention
+  cv::Matx23d table_to_original;
+};
 
 /// How a prototype's image was read (edge_model.h).
 enum class PrototypeKind
@@ -28,11 +37,11 @@ class Prototype
 {
 public:
   /// Distance stored for "no edge on this ray".
-  static constexpr std::uint8_t kNoEdge = 255;
+  static constexpr std::uint8_t kNoEdge = RadialTable::kNoEdge;
   /// The largest table stride (Prototype()).
   static constexpr int kMaxTableStride = 4;
   /// Table distances are stored in units of this many px (0.5 px).
-  static constexpr float kDistanceUnit = 0.5f;
+  static constexpr float kDistanceUnit = RadialTable::kDistanceUnit;
 
   /// Margin around the normalised shape in the table, px, for a shape whose
   /// longer side is `size` px: rays starting just outside the shape see it.
@@ -101,13 +110,10 @@ public:
 
   /// The kDirectionBins distances at pixel (x, y), raw (kNoEdge or units of
   /// kDistanceUnit): those of the node whose block holds the pixel.
-  const std::uint8_t* rawDistances(int x, int y) const
-  {
-    return &table_[(static_cast<std::size_t>(y / stride_) * node_cols_ + x / stride_) * kDirectionBins];
-  }
+  const std::uint8_t* rawDistances(int x, int y) const { return table_.rawDistances(x, y); }
 
   /// Spacing of the table's nodes, table px (1 = every pixel).
-  int tableStride() const { return stride_; }
+  int tableStride() const { return table_.stride(); }
 
   /// Pixels inside the shape (table coordinates), where M-particles are seeded.
   const std::vector<cv::Point>& interior() const { return interior_; }
@@ -118,17 +124,17 @@ public:
 
   /// Maps the original image's pixel coordinates to table coordinates
   /// (OpenCV pixel-centre convention), and back.
-  const cv::Matx23d& originalToTable() const { return original_to_table_; }
-  const cv::Matx23d& tableToOriginal() const { return table_to_original_; }
+  const cv::Matx23d& originalToTable() const { return placement_.original_to_table; }
+  const cv::Matx23d& tableToOriginal() const { return placement_.table_to_original; }
 
   /// Centre of the shape's bounding box, table px.
   cv::Point2d centre() const { return {0.5 * (mask_.cols - 1), 0.5 * (mask_.rows - 1)}; }
 
   /// Size of the original image, px.
-  cv::Size originalSize() const { return original_size_; }
+  cv::Size originalSize() const { return placement_.original_size; }
 
   /// Memory held by the lookup table, bytes.
-  std::size_t tableBytes() const { return table_.size(); }
+  std::size_t tableBytes() const { return table_.bytes(); }
 
   /// Everything but the label as bytes (prototype_bytes.cpp), for the table
   /// cache; fromBytes() gives the same prototype back under `label` and
@@ -146,30 +152,21 @@ private:
   /// The template's scan image, region and edge points; returns its box in the image.
   cv::Rect readTemplate(const cv::Mat& grey, const cv::Mat& alpha, int size, double edge_threshold,
                         double edge_full_strength);
-  void buildTable(double edge_threshold, double edge_full_strength);
-  /// Every node's radial scans by `scanner` (paper 4.4).
-  void fillTable(const RadialScanner& scanner);
-  /// Node columns and rows for the mask's size and stride_.
-  void sizeNodes();
+  void buildTable(int stride, double edge_threshold, double edge_full_strength);
 
   void buildOutline();
 
   PrototypeKind kind_ = PrototypeKind::kSilhouette;
   bool keep_polarity_ = false;
   double blur_sigma_ = 1.0;
-  int stride_ = 1;
-  int node_cols_ = 0;  // ceil(width / stride_)
-  int node_rows_ = 0;
 
   std::string label_;
   std::string instance_;
   cv::Mat mask_;
   cv::Mat template_scan_;  // a template's scan image (empty for a silhouette: made from mask_)
-  std::vector<std::uint8_t> table_;  // [node y][node x][bin], the bins of a node side by side
+  RadialTable table_;
   std::vector<cv::Point> interior_;
   std::vector<OutlinePoint> outline_;
-  cv::Matx23d original_to_table_;
-  cv::Matx23d table_to_original_;
-  cv::Size original_size_;
+  TablePlacement placement_;
 };
 }  // namespace amcr

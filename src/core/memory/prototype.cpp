@@ -6,7 +6,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amcr/base/errors.h"
-#include "amcr/base/parallel_for.h"
 #include "amcr/memory/edge_model.h"
 #include "amcr/scan/edge_thresholds.h"
 #include "amcr/scan/radial_scan.h"
@@ -15,7 +14,6 @@ namespace amcr
 {
 namespace
 {
-constexpr float kMaxTableDistance = 127.f;  // the largest distance a uint8 in 0.5 px units holds
 constexpr double kOutlineSpacing = 2.0;     // px between resampled outline points
 constexpr std::size_t kMinTemplatePoints = 24;  // a template's edge points: fewer fix no shape
 
@@ -48,7 +46,6 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
                      bool keep_polarity)
   : keep_polarity_(keep_polarity),
     blur_sigma_(blur_sigma),
-    stride_(table_stride),
     label_(label),
     instance_(instance.empty() ? label : instance)
 {
@@ -72,7 +69,7 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
   cv::minMaxLoc(grey, &lo, &hi);
   if (hi - lo < 1.0)
     throw MemoryError("prototype '" + label + "' has no edges: the image is uniform");
-  original_size_ = grey.size();
+  placement_.original_size = grey.size();
 
   const cv::Rect box = readAsTemplate(grey, alpha) ? readTemplate(grey, alpha, size, edge_threshold, edge_full_strength)
                                                    : readSilhouette(grey, size);
@@ -81,15 +78,16 @@ Prototype::Prototype(const std::string& label, const cv::Mat& image, int size, d
 
   // Pixel-centre convention: table = (original - box.tl + 0.5) * s - 0.5 + margin.
   const double sx = static_cast<double>(w) / box.width, sy = static_cast<double>(h) / box.height;
-  original_to_table_ = cv::Matx23d(sx, 0, (0.5 - box.x) * sx - 0.5 + margin,  //
-                                   0, sy, (0.5 - box.y) * sy - 0.5 + margin);
-  table_to_original_ = cv::Matx23d(1 / sx, 0, -original_to_table_(0, 2) / sx,  //
-                                   0, 1 / sy, -original_to_table_(1, 2) / sy);
+  cv::Matx23d& to_table = placement_.original_to_table;
+  to_table = cv::Matx23d(sx, 0, (0.5 - box.x) * sx - 0.5 + margin,  //
+                         0, sy, (0.5 - box.y) * sy - 0.5 + margin);
+  placement_.table_to_original = cv::Matx23d(1 / sx, 0, -to_table(0, 2) / sx,  //
+                                             0, 1 / sy, -to_table(1, 2) / sy);
 
   cv::findNonZero(mask_, interior_);
   if (interior_.empty())
     throw MemoryError("prototype '" + label + "' has no edges after normalising to " + std::to_string(size) + " px");
-  buildTable(edge_threshold, edge_full_strength);
+  buildTable(table_stride, edge_threshold, edge_full_strength);
   if (!isTemplate())
     buildOutline();
 }
@@ -180,27 +178,21 @@ cv::Mat Prototype::scanImage() const
   return isTemplate() ? template_scan_.clone() : prepareScanImage(mask_, blur_sigma_);
 }
 
-void Prototype::sizeNodes()
-{
-  node_cols_ = (mask_.cols + stride_ - 1) / stride_;
-  node_rows_ = (mask_.rows + stride_ - 1) / stride_;
-}
-
 // Paper 4.4: every node holds its radial scan in every direction bin, made
 // by the scanner the V-particles use, in the smoothed mask: with stride 1 a
 // lookup equals a direct scan. Far from the outline the smoothed mask is
 // flat, so each ray leaps over the free space a distance transform gives.
-void Prototype::buildTable(double edge_threshold, double edge_full_strength)
+void Prototype::buildTable(int stride, double edge_threshold, double edge_full_strength)
 {
   const cv::Mat scan_image = scanImage();
-  sizeNodes();
-  table_.assign(static_cast<std::size_t>(node_cols_) * node_rows_ * kDirectionBins, kNoEdge);
+  table_ = RadialTable(mask_.size(), stride);
   if (isTemplate())
   {
     // A template's table holds what the camera's scanner finds: the same
     // thresholds, following the template's own contrast.
-    fillTable(RadialScanner(scan_image, EdgeThresholds(scan_image, edge_threshold, edge_full_strength),
-                            kMaxTableDistance + 2.f));
+    table_.fill(RadialScanner(scan_image, EdgeThresholds(scan_image, edge_threshold, edge_full_strength),
+                              RadialTable::kMaxDistance + 2.f),
+                mask_.size());
     return;
   }
   cv::Mat inside_distance, outside_distance, inverted;
@@ -217,35 +209,7 @@ void Prototype::buildTable(double edge_threshold, double edge_full_strength)
   free_space -= static_cast<float>(reach + 2.5);
   cv::max(free_space, 0.0, free_space);
 
-  fillTable(RadialScanner(scan_image, edge_threshold, kMaxTableDistance + 2.f, free_space));
-}
-
-void Prototype::fillTable(const RadialScanner& scanner)
-{
-  const int cols = mask_.cols, rows = mask_.rows;
-  // A node sits at the centre of its stride x stride block of pixels.
-  const float node_offset = 0.5f * static_cast<float>(stride_ - 1);
-  float dir_x[kDirectionBins], dir_y[kDirectionBins];
-  for (int b = 0; b < kDirectionBins; ++b)
-  {
-    dir_x[b] = static_cast<float>(std::cos(binToAngle(b)));
-    dir_y[b] = static_cast<float>(std::sin(binToAngle(b)));
-  }
-  // A row of nodes per piece of work, on OpenCV's threads (parallel_for.h).
-  parallelFor(node_rows_, resolveThreads(0), [&](int j) {
-    for (int i = 0; i < node_cols_; ++i)
-    {
-      std::uint8_t* cell = &table_[(static_cast<std::size_t>(j) * node_cols_ + i) * kDirectionBins];
-      const float x = std::min(static_cast<float>(cols - 1), static_cast<float>(i * stride_) + node_offset);
-      const float y = std::min(static_cast<float>(rows - 1), static_cast<float>(j * stride_) + node_offset);
-      for (int b = 0; b < kDirectionBins; ++b)
-      {
-        const RayHit hit = scanner.scan(x, y, dir_x[b], dir_y[b]);
-        if (hit.valid && hit.distance <= kMaxTableDistance)
-          cell[b] = static_cast<std::uint8_t>(std::lround(hit.distance / kDistanceUnit));
-      }
-    }
-  });
+  table_.fill(RadialScanner(scan_image, edge_threshold, RadialTable::kMaxDistance + 2.f, free_space), mask_.size());
 }
 
 void Prototype::buildOutline()

@@ -21,10 +21,10 @@ constexpr int kLargestSide = 4096;
 std::vector<std::uint8_t> Prototype::toBytes() const
 {
   ByteWriter out;
-  out.put<std::int32_t>(original_size_.width);
-  out.put<std::int32_t>(original_size_.height);
+  out.put<std::int32_t>(placement_.original_size.width);
+  out.put<std::int32_t>(placement_.original_size.height);
   out.put(blur_sigma_);
-  out.put<std::int32_t>(stride_);
+  out.put<std::int32_t>(table_.stride());
   out.put<std::int32_t>(mask_.cols);
   out.put<std::int32_t>(mask_.rows);
   const cv::Mat mask = mask_.isContinuous() ? mask_ : mask_.clone();
@@ -35,10 +35,10 @@ std::vector<std::uint8_t> Prototype::toBytes() const
     const cv::Mat scan = template_scan_.isContinuous() ? template_scan_ : template_scan_.clone();
     out.putBytes(scan.data, scan.total());
   }
-  putMatx(out, original_to_table_);
-  putMatx(out, table_to_original_);
-  out.put<std::uint64_t>(table_.size());
-  out.putBytes(table_.data(), table_.size());
+  putMatx(out, placement_.original_to_table);
+  putMatx(out, placement_.table_to_original);
+  out.put<std::uint64_t>(table_.bytes());
+  out.putBytes(table_.data(), table_.bytes());
   out.put<std::uint64_t>(interior_.size());
   for (const cv::Point& p : interior_)
   {
@@ -63,12 +63,12 @@ std::shared_ptr<const Prototype> Prototype::fromBytes(const std::string& label, 
   std::shared_ptr<Prototype> p(new Prototype());
   p->label_ = label;
   p->instance_ = instance.empty() ? label : instance;
-  p->original_size_.width = in.get<std::int32_t>("the original size");
-  p->original_size_.height = in.get<std::int32_t>("the original size");
+  p->placement_.original_size.width = in.get<std::int32_t>("the original size");
+  p->placement_.original_size.height = in.get<std::int32_t>("the original size");
   p->blur_sigma_ = in.get<double>("the blur");
-  p->stride_ = in.get<std::int32_t>("the table stride");
-  if (p->stride_ < 1 || p->stride_ > kMaxTableStride)
-    throw MemoryError("a table stride of " + std::to_string(p->stride_));
+  const auto stride = in.get<std::int32_t>("the table stride");
+  if (stride < 1 || stride > kMaxTableStride)
+    throw MemoryError("a table stride of " + std::to_string(stride));
   const auto cols = in.get<std::int32_t>("the table size");
   const auto rows = in.get<std::int32_t>("the table size");
   if (cols < 1 || rows < 1 || cols > kLargestSide || rows > kLargestSide)
@@ -85,14 +85,13 @@ std::shared_ptr<const Prototype> Prototype::fromBytes(const std::string& label, 
     p->template_scan_.create(rows, cols, CV_8UC1);
     in.getBytes(p->template_scan_.data, p->template_scan_.total(), "the template");
   }
-  p->original_to_table_ = getMatx(in, "the affine to the table");
-  p->table_to_original_ = getMatx(in, "the affine from the table");
-  p->sizeNodes();
+  p->placement_.original_to_table = getMatx(in, "the affine to the table");
+  p->placement_.table_to_original = getMatx(in, "the affine from the table");
+  p->table_ = RadialTable(cv::Size(cols, rows), stride);
   const std::size_t table_size = in.count(1, "the table");
-  if (table_size != static_cast<std::size_t>(p->node_cols_) * p->node_rows_ * kDirectionBins)
+  if (table_size != p->table_.bytes())
     throw MemoryError("a table of " + std::to_string(table_size) + " bytes for " + std::to_string(cols) + " x " +
-                      std::to_string(rows) + " px at stride " + std::to_string(p->stride_));
-  p->table_.resize(table_size);
+                      std::to_string(rows) + " px at stride " + std::to_string(stride));
   in.getBytes(p->table_.data(), table_size, "the table");
   p->interior_.resize(in.count(8, "the interior"));
   for (cv::Point& at : p->interior_)
