@@ -60,7 +60,7 @@ void MotionModel::moveM(MParticleSet& m, std::size_t begin, std::size_t end, dou
     m.x[i] = static_cast<float>(m.x[i] + u.translation * mapped_new_x + rng.gaussian(noise_translation_));
     m.y[i] = static_cast<float>(m.y[i] + u.translation * mapped_new_y + rng.gaussian(noise_translation_));
     // A frontal shape stays frontal (the frontal hypotheses are kept apart
-    // from the oblique ones: particle_filter_seeding.cpp, drawShape).
+    // from the oblique ones: particle_seeder.cpp, drawShape).
     if (noise_shape_ > 0.0 && !(m.shape[0][i] == kFrontalShape[0] && m.shape[1][i] == kFrontalShape[1] &&
                                 m.shape[2][i] == kFrontalShape[2]))
     {
