@@ -25,7 +25,7 @@ LAYERS = [
     ("extraction", "objects out of the particle clusters, fitted, verified and tracked (spec 'Output')"),
 ]
 # The library's face, at the top of include/amcr/ (and src/core/): it may include every folder.
-FACE = ["recognizer.h", "overlay.h", "frame_budget.h", "working_scale.h"]
+FACE = ["recognizer.h", "recognizer_session.h", "overlay.h", "frame_budget.h", "working_scale.h"]
 # The longest file of src/ and include/: one idea a file.
 MAX_LINES = 450
 
