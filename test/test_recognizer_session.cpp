@@ -214,6 +214,25 @@ TEST_F(RecognizerSessionTest, TeachingTheFirstPrototypeStartsTheFilter)
   EXPECT_EQ(session->recognize(flag_).result.iteration, 1);
 }
 
+// An image that only views its pixels (a message's buffer) is kept with their owner while it is the last
+// image, so that a teach can cut from it after the caller let go; the next image lets the owner go.
+TEST_F(RecognizerSessionTest, TheLastImageKeepsTheOwnerOfItsPixels)
+{
+  auto session = loaded();
+  auto buffer = std::make_shared<cv::Mat>(flag_.clone());
+  const std::weak_ptr<cv::Mat> watched = buffer;
+  amcr::FrameInput input;
+  input.image = cv::Mat(buffer->size(), buffer->type(), buffer->data, buffer->step);  // a view, no count
+  input.pixels_owner = buffer;
+  ASSERT_TRUE(session->recognize(input).recognized);
+  input = amcr::FrameInput();
+  buffer.reset();
+  EXPECT_FALSE(watched.expired()) << "the session let the owner of the last image's pixels go";
+  EXPECT_EQ(session->teach("flag", flag_region_, false).error, "");
+  step(*session);
+  EXPECT_TRUE(watched.expired()) << "the session kept the owner of an image that is no longer the last";
+}
+
 TEST_F(RecognizerSessionTest, RefusalsSayWhyAndChangeNothing)
 {
   auto scratch = make();  // no directory, no image yet

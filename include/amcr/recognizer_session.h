@@ -181,6 +181,12 @@ public:
   std::string commit(PreparedSwap& prepared);
 
 private:
+  /// The last image recognize() was given, with the owner of its pixels.
+  struct LastImage
+  {
+    cv::Mat image;
+    std::shared_ptr<const void> pixels_owner;
+  };
   /// What a rebuild starts from: a copy of the state, taken under the frame lock.
   struct EditState
   {
@@ -188,15 +194,9 @@ private:
     Params params;
     std::shared_ptr<const PrototypeMemory> memory;
     MemoryEdits edits;
-    cv::Mat last_image;
+    LastImage last_image;  // its pixels kept alive while a teach cuts from them
   };
   EditState editState() const;
-  /// The last image recognize() was given, with the owner of its pixels.
-  struct LastImage
-  {
-    cv::Mat image;
-    std::shared_ptr<const void> pixels_owner;
-  };
 
   /// The one restart path (frame lock held): `replacement` (a new filter, fresh by construction) takes the
   /// place of the current one, or the current one is reset. Returns the filter replaced (free it after

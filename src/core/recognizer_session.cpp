@@ -123,7 +123,7 @@ std::uint32_t RecognizerSession::tableVersion() const
 RecognizerSession::EditState RecognizerSession::editState() const
 {
   std::lock_guard<std::mutex> lock(frame_mutex_);
-  return {generation_, params_, memory_, edits_, last_image_.image};
+  return {generation_, params_, memory_, edits_, last_image_};
 }
 
 std::string RecognizerSession::commit(PreparedSwap& prepared)

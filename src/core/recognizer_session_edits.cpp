@@ -47,11 +47,11 @@ std::string RecognizerSession::teachShape(const std::string& label, const std::v
   std::string why = state.edits.teachRefusal(state.memory.get(), label, save, saved);
   if (!why.empty())
     return why;
-  if (state.last_image.empty())
+  if (state.last_image.image.empty())
     return "no image received yet: there is nothing to cut the shape from";
 
   // Without the lock (images go on being recognized): the cut, the new memory and the filter's indexes.
-  const CutShape cut = cutShape(state.last_image, region, state.params);
+  const CutShape cut = cutShape(state.last_image.image, region, state.params);
   if (!cut.why.empty())
     return cut.why;
   auto memory = state.memory ? std::make_shared<PrototypeMemory>(*state.memory) : std::make_shared<PrototypeMemory>();
