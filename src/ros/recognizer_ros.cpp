@@ -12,9 +12,9 @@
 
 #include <boost/make_shared.hpp>
 #include <cv_bridge/cv_bridge.h>
+#include <std_srvs/Trigger.h>
 
 #include "amcr/base/parallel_for.h"
-#include "amcr/overlay.h"
 #include "image_input.h"
 #include "message_conversion.h"
 #include "parameter_loading.h"
@@ -29,29 +29,27 @@ namespace
 /// they leave (on a saturated CPU it takes longer, and the output keeps its rate).
 constexpr int kRebuildNiceness = 10;
 
-/// Lowers the CPU priority of the calling thread alone (Linux: a thread's own niceness).
-void lowerThisThreadsPriority()
+/// Lowers the CPU priority of the thread that serves its queue, of it alone (Linux: a thread's niceness).
+class LowerThreadPriority : public ros::CallbackInterface
 {
-  const auto thread = static_cast<id_t>(syscall(SYS_gettid));
-  if (setpriority(PRIO_PROCESS, thread, kRebuildNiceness) != 0)
-    ROS_WARN("cannot lower the priority of the rebuild thread (%s): a rebuild competes with the images for CPU",
-             std::strerror(errno));
-}
-
-/// A callback that runs a function once, on the thread that serves its queue.
-class RunOnce : public ros::CallbackInterface
-{
-public:
-  explicit RunOnce(std::function<void()> function) : function_(std::move(function)) {}
   CallResult call() override
   {
-    function_();
+    if (setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kRebuildNiceness) != 0)
+      ROS_WARN("cannot lower the priority of the rebuild thread (%s): a rebuild competes with the images for CPU",
+               std::strerror(errno));
     return Success;
   }
-
-private:
-  std::function<void()> function_;
 };
+
+/// A service's callback that answers with `answer(request)`, which carries any error: the call succeeds.
+template <typename Service, typename Answer>
+auto answering(Answer answer)
+{
+  return [answer](typename Service::Request& request, typename Service::Response& response) {
+    response = answer(request);
+    return true;
+  };
+}
 }  // namespace
 
 RecognizerRos::RecognizerRos(ros::NodeHandle nh, ros::NodeHandle private_nh,
@@ -64,19 +62,19 @@ RecognizerRos::RecognizerRos(ros::NodeHandle nh, ros::NodeHandle private_nh,
 
 void RecognizerRos::loadStartupState()
 {
-  std::unique_lock<std::mutex> lock(mutex_);
+  amcr::Params params;
   try
   {
     std::vector<std::string> notes;
-    params_ = loadParams(private_nh_, &notes);
+    params = loadParams(private_nh_, &notes);
     for (const std::string& note : notes)
       ROS_DEBUG("parameter: %s", note.c_str());
   }
-  catch (const std::exception& e)
+  catch (const std::exception& e)  // `params` keeps the defaults
   {
-    params_ = amcr::Params();
     ROS_ERROR("invalid parameters, using the defaults of config/amcr.yaml instead: %s", e.what());
   }
+  session_ = std::make_unique<amcr::RecognizerSession>(params, sessionHooks());
 
   private_nh_.param("min_input_rate", min_input_rate_, 1.0);
   private_nh_.param("max_input_rate", max_input_rate_, 0.0);
@@ -91,7 +89,6 @@ void RecognizerRos::loadStartupState()
     max_input_rate_ = std::numeric_limits<double>::infinity();
 
   pub_prototypes_ = private_nh_.advertise<amcr::PrototypeTable>("prototypes", 1, true);
-  lock.unlock();  // the load builds without it, as every load does
   std::string directory;
   private_nh_.param<std::string>("prototypes", directory, "");
   if (directory.empty())
@@ -99,7 +96,7 @@ void RecognizerRos::loadStartupState()
               private_nh_.resolveName("load_prototypes").c_str());
   else
   {
-    PreparedSwap prepared = prepareLoad(directory);
+    PreparedSwap prepared = prepareLoad(directory);  // on this thread and amcr's workers: nothing to wait for
     const std::string error = commit(prepared);
     if (!error.empty())
     {
@@ -108,9 +105,22 @@ void RecognizerRos::loadStartupState()
                 private_nh_.resolveName("load_prototypes").c_str());
     }
   }
-  lock.lock();
-  if (!memory_)
-    publishPrototypeTable();  // the empty table (a load publishes its own)
+  const amcr::LabelTable table = session_->labelTable();
+  if (!table.memory)
+    publishPrototypeTable(table);  // the empty table (a load publishes its own)
+}
+
+amcr::SessionHooks RecognizerRos::sessionHooks()
+{
+  amcr::SessionHooks hooks;
+  hooks.warning = [](const std::string& text) { ROS_WARN("%s", text.c_str()); };
+  hooks.info = [](const std::string& text) { ROS_INFO("%s", text.c_str()); };
+  hooks.restarted = [this] { stats_.restarted(); };
+  hooks.table_changed = [this](const amcr::LabelTable& table) {
+    stats_.setPrototypes(table.memory ? table.memory->size() : 0, "");
+    publishPrototypeTable(table);
+  };
+  return hooks;
 }
 
 void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers)
@@ -138,13 +148,9 @@ void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers
   });
   // The image stream through diagnostic_updater's standard tasks: its rate against the accepted
   // bounds, and how old the images are when they arrive.
-  input_rate_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
-      diagnostic_updater::FrequencyStatusParam(&min_input_rate_, &max_input_rate_));
-  input_delay_ = std::make_unique<diagnostic_updater::TimeStampStatus>();
-  input_status_ = std::make_unique<diagnostic_updater::CompositeDiagnosticTask>("input images");
-  input_status_->addTask(input_rate_.get());
-  input_status_->addTask(input_delay_.get());
-  updater_->add(*input_status_);
+  input_status_.addTask(&input_rate_);
+  input_status_.addTask(&input_delay_);
+  updater_->add(input_status_);
   diagnostics_timer_ = private_nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
     try
     {
@@ -157,80 +163,32 @@ void RecognizerRos::advertise(std::function<std::uint32_t()> overlay_subscribers
   });
 
   srv_reset_ = private_nh_.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
-      "reset", [this](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+      "reset", answering<std_srvs::Trigger>([this](const std_srvs::Trigger::Request&) {
+        std_srvs::Trigger::Response response;
         response.message = reset();
         response.success = true;
-        return true;
-      });
+        return response;
+      }));
   srv_load_ = edit_nh.advertiseService<amcr::LoadPrototypes::Request, amcr::LoadPrototypes::Response>(
-      "load_prototypes", [this](amcr::LoadPrototypes::Request& request, amcr::LoadPrototypes::Response& response) {
-        response = loadPrototypes(request.directory);
-        return true;  // the answer carries the error: the call itself succeeded
-      });
+      "load_prototypes",
+      answering<amcr::LoadPrototypes>([this](const auto& request) { return loadPrototypes(request.directory); }));
   srv_teach_ = edit_nh.advertiseService<amcr::TeachPrototype::Request, amcr::TeachPrototype::Response>(
-      "teach", [this](amcr::TeachPrototype::Request& request, amcr::TeachPrototype::Response& response) {
-        response = teach(request);
-        return true;
-      });
+      "teach", answering<amcr::TeachPrototype>([this](const auto& request) { return teach(request); }));
   srv_remove_ = edit_nh.advertiseService<amcr::RemovePrototype::Request, amcr::RemovePrototype::Response>(
-      "remove_prototype",
-      [this](amcr::RemovePrototype::Request& request, amcr::RemovePrototype::Response& response) {
-        response = removePrototype(request.label);
-        return true;
-      });
-  // amcr's workers (the images' parallelFor loops) and OpenCV's (its loops within resize, blur, flow...)
-  // are started here, at the host's priority: started later by the rebuild thread, they would inherit its
-  // lower one.
+      "remove_prototype", answering<amcr::RemovePrototype>([this](const auto& r) { return removePrototype(r.label); }));
+  // amcr's workers (the images' parallelFor loops) and OpenCV's start here, at the host's priority: started
+  // later by the rebuild thread, they would inherit its lower one.
   amcr::startWorkerThreads();
-  edit_queue_.addCallback(boost::make_shared<RunOnce>(lowerThisThreadsPriority));
+  edit_queue_.addCallback(boost::make_shared<LowerThreadPriority>());
   edit_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &edit_queue_);
   edit_spinner_->start();
 }
 
-std::unique_ptr<amcr::Recognizer> RecognizerRos::restart(std::unique_ptr<amcr::Recognizer> replacement)
-{
-  if (replacement)
-    std::swap(recognizer_, replacement);
-  else if (recognizer_)
-    recognizer_->reset();
-  last_stamp_ = ros::Time();
-  fresh_ = true;
-  stats_.restarted();
-  return replacement;
-}
-
 std::string RecognizerRos::reset()
 {
-  std::lock_guard<std::mutex> lock(mutex_);
-  restart();
-  const std::string what = recognizer_ ? "filter reset: it starts again from the next image"
-                                       : "no prototypes loaded: the filter starts once they are";
+  const std::string what = session_->reset();
   ROS_INFO("%s", what.c_str());
   return what;
-}
-
-amcr::Params RecognizerRos::params() const
-{
-  std::lock_guard<std::mutex> lock(mutex_);
-  return params_;
-}
-
-void RecognizerRos::followInput(const ros::Time& stamp, const cv::Size& size)
-{
-  if (!last_stamp_.isZero() && stamp < last_stamp_)
-  {
-    ROS_WARN("time went backwards (%.3f s -> %.3f s; a looped bag?): filter reset", last_stamp_.toSec(),
-             stamp.toSec());
-    restart();
-  }
-  last_stamp_ = stamp;
-  if (last_size_ != size)
-  {
-    if (!last_size_.empty())  // the recognizer re-seeds its V-particles itself
-      ROS_INFO("image size changed from %d x %d to %d x %d: V-particles re-seeded", last_size_.width,
-               last_size_.height, size.width, size.height);
-    last_size_ = size;
-  }
 }
 
 bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_overlay, Frame& frame)
@@ -238,8 +196,8 @@ bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_ove
   try
   {
     stats_.received(msg->header.seq);
-    input_rate_->tick();
-    input_delay_->tick(msg->header.stamp);
+    input_rate_.tick();
+    input_delay_.tick(msg->header.stamp);
     std::string why;
     cv_bridge::CvImageConstPtr image = toCoreImage(msg, why);
     if (!image)
@@ -249,43 +207,45 @@ bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_ove
       return false;
     }
 
-    std::lock_guard<std::mutex> lock(mutex_);
-    last_image_ = image;  // what ~teach cuts from, also before any prototype is there
-    if (!recognizer_)
+    std::lock_guard<std::mutex> lock(input_mutex_);
+    amcr::FrameInput input;
+    input.image = image->image;  // may view the message's buffer: the session keeps `image` with it (~teach)
+    input.pixels_owner = std::shared_ptr<const void>(image.get(), [image](const void*) {});
+    input.draw_overlay = draw_overlay;
+    input.restart_unless_fresh = !last_stamp_.isZero() && msg->header.stamp < last_stamp_;
+    amcr::RecognizedFrame& out = frame;
+    out = session_->recognize(input);
+    if (!out.recognized && out.error.empty())
     {
       stats_.skipped();
       ROS_ERROR_THROTTLE(5.0, "no prototypes loaded: images are ignored until %s succeeds",
                          private_nh_.resolveName("load_prototypes").c_str());
       return false;
     }
-    followInput(msg->header.stamp, image->image.size());
-    frame.result = recognizer_->step(image->image);
-    frame.message = toMsg(frame.result, msg->header);
-    frame.message.prototype_table_version = table_version_;
-    frame.memory = memory_;
-    frame.restarted = fresh_;
-    fresh_ = false;
-    RecognizerStats::FilterState state;  // by name: positional braces once swapped the budget and the M-particle mean
-    state.converged_v_particles = frame.result.converged_v_particles;
-    state.num_v_particles = params_.num_v_particles;
-    state.flow_failures = frame.result.flow_failures;
-    state.mean_m_particles = frame.result.mean_m_particles;
-    state.budget_ms = params_.frame_budget_ms;
-    state.objects_over_limit = frame.result.objects_over_limit;
-    state.max_objects = params_.max_objects;
-    stats_.processed(frame.message, state);
-    if (draw_overlay)
+    if (out.input_restart)
+      ROS_WARN("time went backwards (%.3f s -> %.3f s; a looped bag?): filter reset", last_stamp_.toSec(),
+               msg->header.stamp.toSec());
+    last_stamp_ = msg->header.stamp;
+    if (!out.recognized)
     {
-      try
-      {
-        frame.overlay = amcr::drawOverlay(image->image, *recognizer_, frame.result);
-        stats_.overlayDrawn();
-      }
-      catch (const std::exception& e)  // the recognitions stand
-      {
-        reportSkipped(*msg, e.what());
-      }
+      reportSkipped(*msg, out.error);
+      return false;
     }
+    frame.message = toMsg(out.result, msg->header);
+    frame.message.prototype_table_version = out.table_version;
+    RecognizerStats::FilterState state;  // by name: positional braces once swapped the budget and the M-particle mean
+    state.converged_v_particles = out.result.converged_v_particles;
+    state.num_v_particles = out.params.num_v_particles;
+    state.flow_failures = out.result.flow_failures;
+    state.mean_m_particles = out.result.mean_m_particles;
+    state.budget_ms = out.params.frame_budget_ms;
+    state.objects_over_limit = out.result.objects_over_limit;
+    state.max_objects = out.params.max_objects;
+    stats_.processed(frame.message, state);
+    if (!out.overlay.empty())
+      stats_.overlayDrawn();
+    if (!out.overlay_error.empty())  // the recognitions stand
+      reportSkipped(*msg, out.overlay_error);
     return true;
   }
   catch (const std::exception& e)
@@ -313,9 +273,9 @@ void RecognizerRos::reportSkipped(const sensor_msgs::Image& msg, const std::stri
   }
 }
 
-void RecognizerRos::publishPrototypeTable()
+void RecognizerRos::publishPrototypeTable(const amcr::LabelTable& table)
 {
-  pub_prototypes_.publish(toMsg(memory_.get(), edits_.directory(), table_version_, ros::Time::now()));
+  pub_prototypes_.publish(toMsg(table.memory.get(), table.directory, table.version, ros::Time::now()));
 }
 
 void RecognizerRos::reportInputError(const std::string& text)

@@ -3,8 +3,8 @@
 // memory was loaded from. A rebuild with other table parameters loads the
 // directory again and applies them, so they survive it; loading a directory
 // forgets them. Also the checks a teach or a removal must pass on the memory
-// in use. The nodelet (src/ros/recognizer_teaching.cpp) keeps one under its
-// frame lock and copies it for a rebuild; the class itself takes no lock.
+// in use. amcr::RecognizerSession (amcr/recognizer_session.h) keeps one under
+// its frame lock and copies it for a rebuild; the class itself takes no lock.
 #pragma once
 
 #include <functional>
