@@ -67,7 +67,8 @@ protected:
                       amcr_test::makeAffine(amcr_test::prototypeCentre(), {320.0, 240.0}, 0.5, 1.1, 0.9, 0.15), 35.0}};
     arrow_ = amcr_test::renderClean(scene);
     // The flag alone over clutter (no lines: a line across it would join its outline to the region's border).
-    const amcr::Affine flag_at = amcr_test::makeAffine(amcr_test::prototypeCentre(), {300.0, 240.0}, 0.2, 1.0, 1.0, 0.0);
+    const amcr::Affine flag_at =
+        amcr_test::makeAffine(amcr_test::prototypeCentre(), {300.0, 240.0}, 0.2, 1.0, 1.0, 0.0);
     scene.objects = {{ShapeId::kFlag, flag_at, 35.0}};
     scene.clutter.lines = 0;
     scene.clutter.seed = 21;
@@ -402,7 +403,8 @@ TEST_F(RecognizerSessionTest, ImagesAreRecognizedWithThePreviousMemoryWhileAMemo
   for (ShapeId id : amcr_test::allShapes())
     ASSERT_TRUE(cv::imwrite(large.file(amcr_test::shapeName(id) + ".png"), amcr_test::drawPrototype(id)));
   for (std::uint64_t seed = 1; seed <= 3; ++seed)
-    ASSERT_TRUE(cv::imwrite(large.file("random_" + std::to_string(seed) + ".png"), amcr_test::drawRandomSilhouette(seed)));
+    ASSERT_TRUE(
+        cv::imwrite(large.file("random_" + std::to_string(seed) + ".png"), amcr_test::drawRandomSilhouette(seed)));
   params_.table_cache_dir = "none";  // every table is built
   auto session = loaded();
   std::atomic<bool> done{false};

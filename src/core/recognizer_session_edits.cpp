@@ -90,9 +90,11 @@ std::string RecognizerSession::teachShape(const std::string& label, const std::v
   };
   const auto end = std::chrono::steady_clock::now();
   char line[1024];
-  std::snprintf(line, sizeof line, "taught '%s' from a %d x %d px cut of the last image (prototype %d, %s) in %.0f ms "
-                "(%.0f ms of it for the swap); label table version %u", label.c_str(), cut.bounds.width,
-                cut.bounds.height, answer.prototype_id, where.c_str(), ms(end - start), ms(end - built), tableVersion());
+  std::snprintf(line, sizeof line,
+                "taught '%s' from a %d x %d px cut of the last image (prototype %d, %s) in %.0f ms (%.0f ms of it "
+                "for the swap); label table version %u",
+                label.c_str(), cut.bounds.width, cut.bounds.height, answer.prototype_id, where.c_str(),
+                ms(end - start), ms(end - built), tableVersion());
   inform(line);
   return "";
 }

@@ -178,8 +178,9 @@ std::string RecognizerSession::swapReconfigured(const Reconfiguration& change,
   if (table_changed)
     tableChanged();
   indexWarnings();
-  inform("reconfigured (" + change.changes + "): " +
-         (!memory_ ? "no prototypes loaded yet" : tables_rebuilt ? "prototype tables and filter rebuilt" : "filter rebuilt"));
+  const char* what = !memory_ ? "no prototypes loaded yet"
+                     : tables_rebuilt ? "prototype tables and filter rebuilt" : "filter rebuilt";
+  inform("reconfigured (" + change.changes + "): " + what);
   return "";
 }
 }  // namespace amcr
