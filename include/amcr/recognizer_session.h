@@ -67,8 +67,8 @@ struct SessionHooks
 struct FrameInput
 {
   FrameInput() = default;
-  /// An image that owns its pixels, no overlay, no restart: recognize(frame).
-  FrameInput(cv::Mat image) : image(std::move(image)) {}  // NOLINT(google-explicit-constructor)
+  /// An image that owns its pixels, no overlay, no restart; implicit, so that recognize(frame) reads well.
+  FrameInput(cv::Mat frame) : image(std::move(frame)) {}
 
   cv::Mat image;  ///< any type Recognizer::step takes
   /// Keeps the pixels of `image` alive while the session keeps it as the last image (teach() cuts from
