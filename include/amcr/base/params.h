@@ -31,9 +31,15 @@ enum class RayCorrespondence
   kAffine,  ///< the ray in the direction the relational affine maps the image ray to (oblique views)
 };
 
-struct Params
+// The parameters come in groups, each read by the component that owns it;
+// a component takes the group(s) it reads (a Params binds to each), and only
+// what builds everything (Recognizer, FilterMemory), the files and the
+// checks take the whole Params.
+
+/// Particle counts, and how a V-particle's M-particles are shared among the
+/// prototypes (PrototypePrior; the particle filter's seeding and resampling).
+struct ParticleCounts
 {
-  // Particle counts.
   int num_v_particles = 60;            ///< V-particles in the input image [1, 5000]; paper 30
   int m_particles_per_prototype = 60;  ///< M-particles per prototype per V [1, 5000]; paper 60
   /// M-particle budget of a V-particle, shared among the prototypes
@@ -43,7 +49,17 @@ struct Params
   double kld_error = 0.2;          ///< KLD-sampling's bound on the KL divergence (Fox 2003) [0, 1]; 0 = a fixed count
   double kld_z = 2.33;             ///< KLD-sampling's upper standard normal quantile (2.33: 99%) [0, 10]
 
-  // Data-driven proposals (proposal_index.h).
+  /// Context prior over the memory (paper 3.6, "context"): label -> weight
+  /// of the label in the initial and re-seeded M-particles, shared equally
+  /// among the label's instances. Labels not listed weigh 1; weight 0
+  /// removes a label (all its instances) from the filter.
+  std::map<std::string, double> prototype_priors;
+};
+
+/// Data-driven proposals (proposal_index.h, profile_index.h; FilterMemory
+/// builds the indexes, the particle filter draws from them).
+struct ProposalParams
+{
   double index_share = 0.5;  ///< share of new M-particles drawn from the proposal index [0, 1]; 0 = none
   /// Exponent of the importance weight pi / q of a new M-particle under the mixture proposal [0, 1]:
   /// 1 = exact importance sampling, 0 = sensor resetting (weighed by its likelihood alone).
@@ -59,8 +75,32 @@ struct Params
   /// Most entries the index holds [0, 1e9]; a memory that would need more
   /// is indexed at a larger stride (ProposalIndex); 0 = no limit.
   int index_max_entries = 3000000;
+};
 
-  // Prototype memory.
+/// What counts as an edge, in the frames (the recognizer's scans) and in the
+/// prototypes (their lookup tables, MemoryParams): lengths in px of the
+/// working image (working_scale.h).
+struct EdgeParams
+{
+  double edge_threshold = 40.0;   ///< grey-level step over 2 px that counts as an edge [1, 255]
+  /// Local edge strength at which edge_threshold applies in full, grey
+  /// levels [0, 255]: where the strongest 2 px steps within about 50 px are
+  /// weaker, a point's threshold falls in proportion, down to the frame's
+  /// noise floor; 0 = edge_threshold everywhere (edge_thresholds.h).
+  double edge_full_strength = 100.0;
+  double blur_sigma = 1.0;        ///< Gaussian smoothing before scanning, working px [0, 10]
+  /// A grey template's edges count only where the grey rises across them as
+  /// in the template (shape-based matching's "use polarity"); false: the
+  /// polarity most of its points show, so a part in reversed contrast is
+  /// found (edge_model.h). Silhouettes: no effect (no side of theirs is darker).
+  bool keep_polarity = false;
+};
+
+/// Prototype memory: what its lookup tables are built with (the edges'
+/// definition with them) and where they are cached (prototype_memory.h,
+/// prototype_file.h, table_cache.h, table_stride_choice.h).
+struct MemoryParams : EdgeParams
+{
   int prototype_size = 128;  ///< longer side of a prototype in the lookup tables, px [32, 512]
   /// Spacing of the lookup tables' nodes, table px [0, 4]: 1 = a scan at
   /// every pixel (exact lookups); s = one per s x s block, s^2 times less
@@ -79,27 +119,25 @@ struct Params
   /// otherwise an absolute path or one starting with "~/".
   std::string table_cache_dir;
 
-  // Radial edge scans in the working image: the input reduced to
-  // working_resolution (working_scale.h). Every length in px below is of the
-  // working image, except min_object_size (input px).
+  /// Params::validate's checks of these parameters alone.
+  void validate() const;
+};
+
+/// Radial edge scans in the working image: the input reduced to
+/// working_resolution (working_scale.h). Every length in px of the groups
+/// is of the working image, except min_object_size (input px).
+struct ScanParams
+{
   double max_ray_length = 200.0;  ///< longest ray, working px [10, 4000]
-  double edge_threshold = 40.0;   ///< grey-level step over 2 px that counts as an edge [1, 255]
-  /// Local edge strength at which edge_threshold applies in full, grey
-  /// levels [0, 255]: where the strongest 2 px steps within about 50 px are
-  /// weaker, a point's threshold falls in proportion, down to the frame's
-  /// noise floor; 0 = edge_threshold everywhere (edge_thresholds.h).
-  double edge_full_strength = 100.0;
-  double blur_sigma = 1.0;        ///< Gaussian smoothing before scanning, working px [0, 10]
-  /// A grey template's edges count only where the grey rises across them as
-  /// in the template (shape-based matching's "use polarity"); false: the
-  /// polarity most of its points show, so a part in reversed contrast is
-  /// found (edge_model.h). Silhouettes: no effect (no side of theirs is darker).
-  bool keep_polarity = false;
   /// Longer side of the working image, input px [0, 4000]; a larger input is
   /// reduced to it (never enlarged), and results come back in input px; 0 = the input's own size.
   int working_resolution = 640;
+};
 
-  // Observation model (paper eqs. 5-6).
+/// Observation model (paper eqs. 5-6; observation_model.h) and the view
+/// shapes it compares under (ray_correspondence affine).
+struct ObservationParams
+{
   LikelihoodForm likelihood_form = LikelihoodForm::kPaper;
   DeviationSpace deviation_space = DeviationSpace::kImage;
   double sigma_w = 5.0;           ///< std. dev. of a ray's deviation, working px (prototype px with deviation_space prototype) (0, 1000]; paper 10
@@ -111,13 +149,23 @@ struct Params
   int affine_refits = 0;          ///< re-estimates of A from affine-corrected triangle rays [0, 5]
   double max_anisotropy = 3.0;    ///< largest anisotropy of the view shapes new M-particles get [1, 10]; 1 = frontal
   double oblique_share = 0.5;     ///< share of new M-particles given an oblique view shape, and of index candidates read under one [0, 1]
-  double motion_noise_shape = 0.05;  ///< M-particle view-shape noise per iteration [0, 1]
+};
 
-  // Motion model (paper 4.2) and exploration policy (paper 4.3).
+/// Motion model (paper 4.2; motion_model.h) and the exploration policy's
+/// moves (paper 4.3; exploration_policy.h).
+struct MotionParams
+{
+  double motion_noise_shape = 0.05;      ///< M-particle view-shape noise per iteration [0, 1]
   double v_step = 4.0;                   ///< forward step of a V-particle per iteration, working px [0, 100]
   double motion_noise_translation = 1.5; ///< M-particle translation noise, prototype px [0, 100]
   double motion_noise_rotation = 0.08;   ///< M-particle rotation noise, rad [0, 3.15]
   double reflection_jitter = 0.3;        ///< random turn added at a reflection, rad [0, 3.15]
+};
+
+/// Attention: where the V-particles look (discriminative_attention.h,
+/// discriminative_places.h, the held objects of the particle filter).
+struct AttentionParams
+{
   /// Attention that discriminates (discriminative_attention.h): a V-particle
   /// whose M-particles have found a shape while another prototype's cluster
   /// competes moves where their predicted scans differ most.
@@ -128,23 +176,31 @@ struct Params
   bool discriminative_places = true;
   double discriminative_min_share = 0.05;  ///< share of a V's M-particles a competing cluster needs [0, 1]
   double discriminative_min_gain = 0.2;    ///< least expected log-likelihood ratio of a discriminative move, nats [0, 100]
-  /// Competing clusters of V-particles, then look-alikes of tracked objects'
-  /// prototypes (discriminative_places.h), fitted and verified on the image
-  /// per frame beside the groups' (fit_starts.cpp) [0, 64]; 0 = none
-  /// (and no look-alike pairs are found).
-  int competing_fits = 4;
+  int held_v_particles = 3;  ///< V-particles a held object keeps at V-resampling [0, 5000]
+  double scene_prior_share = 0.25;  ///< share of new M-particles drawn in the held objects' prototypes [0, 1]
+};
 
-  // Resampling (paper 3.6).
+/// Resampling and seeding (paper 3.6; the particle filter).
+struct ResamplingParams
+{
   int v_resample_interval = 3;      ///< w: V-particles are resampled every w iterations [1, 1000]; paper 10
   double v_reseed_fraction = 0.5;   ///< share of V-particles re-seeded at V-resampling [0, 1]
   double m_reseed_fraction = 0.02;  ///< share of M-particles re-seeded uniformly per iteration [0, 1]
   double injection_fraction = 0.1;  ///< share of M-particles placed at leading hypotheses [0, 1]
   int seed_enclosure_rays = 6;      ///< a new V-particle wants this many of 8 rays to hit an edge [0, 8]
   int seed_attempts = 10;           ///< tries to find such a place before taking any [1, 1000]
+};
 
-  // Result extraction.
+/// Result extraction (object_extractor.h and its steps).
+struct ExtractionParams
+{
   double cluster_radius = 6.0;        ///< M-cluster radius, prototype px [0.5, 100]
   double cluster_min_share = 0.3;     ///< share of a V's M-particles its cluster needs [0, 1]
+  /// Competing clusters of V-particles, then look-alikes of tracked objects'
+  /// prototypes (discriminative_places.h), fitted and verified on the image
+  /// per frame beside the groups' (fit_starts.cpp) [0, 64]; 0 = none
+  /// (and no look-alike pairs are found).
+  int competing_fits = 4;
   double group_tolerance = 8.0;       ///< V-particles agree when they map within this, working px [0.5, 200]
   int min_support = 2;                ///< V-particles an object needs [1, 5000]
   int refine_iterations = 5;          ///< outline-to-edge refinement passes of the affine [0, 100]
@@ -170,35 +226,48 @@ struct Params
   /// target; 0 = the whole outline moves as one (outline_parts.h).
   double part_shift = 0.05;
   double min_object_size = 64.0;      ///< smallest object reported: longer side of its outline's box, input px [0, 4000]
+};
 
-  // Objects: life cycle and attention (track_registry.h).
+/// Tracking (spec "Tracking"; flow_tracker.h): the optical flow the
+/// V-particles ride and the objects' life cycle (track_registry.h).
+struct TrackingParams
+{
   int confirm_frames = 3;    ///< frames an object is reported in before it is confirmed [1, 1000]
   int lost_frames = 5;       ///< frames in a row without a report after which a track ends [1, 1000]
   /// Frames after its end during which a lost track's id is given back to an
   /// object of its label found where it was last [0, 10000]; 0 = never.
   int recall_frames = 30;
   int max_objects = 64;      ///< tracks kept at once; no new object is reported beyond [1, 256]
-  int held_v_particles = 3;  ///< V-particles a held object keeps at V-resampling [0, 5000]
-  double scene_prior_share = 0.25;  ///< share of new M-particles drawn in the held objects' prototypes [0, 1]
-
-  // Tracking (spec "Tracking") and the time per frame.
   bool optical_flow = true;        ///< V-particles ride pyramidal Lucas-Kanade flow between frames
   int flow_window = 21;            ///< side of the Lucas-Kanade window, working px [5, 101]
   int flow_levels = 3;             ///< pyramid levels above the frame [0, 8]
   double flow_max_error = 40.0;    ///< a flow whose mean grey-level difference over the window exceeds this fails [1, 255]
+};
+
+/// How a frame's work is run: its time cap, its threads and the random seed.
+struct RunParams
+{
   double frame_budget_ms = 0.0;    ///< time cap per frame, ms; 0 = a full iteration every frame [0, 10000]
   /// Threads the V-particles' iterations run on; 0 = every core [0, 256].
   /// The output is the same for any count.
   int num_threads = 0;
-
-  /// Context prior over the memory (paper 3.6, "context"): label -> weight
-  /// of the label in the initial and re-seeded M-particles, shared equally
-  /// among the label's instances. Labels not listed weigh 1; weight 0
-  /// removes a label (all its instances) from the filter.
-  std::map<std::string, double> prototype_priors;
-
   std::uint64_t seed = 0;  ///< seed of the recognizer's random generator
+};
 
+/// Every parameter: the groups together, read by name through
+/// parameterTable() and setParameter().
+struct Params : ParticleCounts,
+                ProposalParams,
+                MemoryParams,
+                ScanParams,
+                ObservationParams,
+                MotionParams,
+                AttentionParams,
+                ResamplingParams,
+                ExtractionParams,
+                TrackingParams,
+                RunParams
+{
   /// Throws ParameterError naming the first parameter out of range (or the
   /// prototype_priors entry with a negative or non-finite weight), or the
   /// pair of parameters where one makes the other meaningless:

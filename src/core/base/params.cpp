@@ -225,6 +225,14 @@ void Params::validate() const
   checkConsistency(*this);
 }
 
+void MemoryParams::validate() const
+{
+  // The other groups at their defaults, which are valid: what is refused is of this group.
+  Params whole;
+  static_cast<MemoryParams&>(whole) = *this;
+  whole.validate();
+}
+
 const std::vector<ParameterInfo>& parameterTable()
 {
   static const std::vector<ParameterInfo> table = [] {
