@@ -69,16 +69,16 @@ amcr::Params loadParams(const ros::NodeHandle& private_nh, std::vector<std::stri
     if (notes)
       notes->push_back(info.name + " = " + std::to_string(value));
   }
-  for (const char* name : {"likelihood_form", "deviation_space", "ray_correspondence", "table_cache_dir"})
+  for (const amcr::WordParameterInfo& info : amcr::wordParameterTable())
   {
-    if (!private_nh.hasParam(name))
-      continue;
+    if (info.name == "prototype_priors" || !private_nh.hasParam(info.name))
+      continue;  // prototype_priors below: a map or a string
     std::string value;
-    if (!private_nh.getParam(name, value))
-      throw amcr::ParameterError(std::string("~") + name + " must be a string");
-    amcr::setParameter(params, name, value);
+    if (!private_nh.getParam(info.name, value))
+      throw amcr::ParameterError("~" + info.name + " must be a string: " + info.takes);
+    amcr::setParameter(params, info.name, value);
     if (notes)
-      notes->push_back(std::string(name) + " = " + value);
+      notes->push_back(info.name + " = " + value);
   }
   // ~prototype_priors: a map {label: weight} or the string "label: weight, ...".
   if (private_nh.hasParam("prototype_priors"))

@@ -28,17 +28,12 @@ const std::vector<amcr::AMCRConfig::AbstractParamDescriptionConstPtr>& configFie
   return amcr::AMCRConfig::__getParamDescriptions__();
 }
 
-/// The string parameters of amcr::Params (the numeric ones are in amcr::parameterTable()).
+/// A string parameter of cfg/AMCR.cfg as the core's table of word parameters reads it.
 std::string textParameter(const amcr::Params& params, const std::string& name)
 {
-  if (name == "likelihood_form")
-    return amcr::toString(params.likelihood_form);
-  if (name == "deviation_space")
-    return amcr::toString(params.deviation_space);
-  if (name == "ray_correspondence")
-    return amcr::toString(params.ray_correspondence);
-  if (name == "prototype_priors")
-    return amcr::formatPriors(params.prototype_priors);
+  for (const amcr::WordParameterInfo& info : amcr::wordParameterTable())
+    if (info.name == name)
+      return amcr::getWordParameter(params, name);
   throw amcr::ParameterError("cfg/AMCR.cfg has the string parameter '" + name + "', which amcr::Params does not know");
 }
 
@@ -155,14 +150,12 @@ std::string describeChanges(const amcr::Params& before, const amcr::Params& afte
     if (was != is)
       note(info.name + " " + formatValue(info.name, was) + " -> " + formatValue(info.name, is));
   }
-  if (after.likelihood_form != before.likelihood_form)
-    note("likelihood_form " + amcr::toString(after.likelihood_form));
-  if (after.deviation_space != before.deviation_space)
-    note("deviation_space " + amcr::toString(after.deviation_space));
-  if (after.ray_correspondence != before.ray_correspondence)
-    note("ray_correspondence " + amcr::toString(after.ray_correspondence));
-  if (after.prototype_priors != before.prototype_priors)
-    note("prototype_priors '" + amcr::formatPriors(after.prototype_priors) + "'");
+  for (const amcr::WordParameterInfo& info : amcr::wordParameterTable())
+  {
+    const std::string was = amcr::getWordParameter(before, info.name), is = amcr::getWordParameter(after, info.name);
+    if (was != is)  // a choice as its word, a text quoted
+      note(info.name + " " + (info.words.empty() ? "'" + is + "'" : is));
+  }
   return out;
 }
 }  // namespace amcr_ros

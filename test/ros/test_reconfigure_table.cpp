@@ -29,7 +29,11 @@ TEST(ReconfigureTable, SameParametersRangesAndDefaultsAsTheCore)
     cfg_names.insert(d->name);
 
   // Names first: a parameter that the .cfg lacks or the core does not know is named before anything else.
-  std::set<std::string> core_names = {"likelihood_form", "deviation_space", "ray_correspondence", "prototype_priors"};
+  // table_cache_dir is read when the memory is loaded: it is not reconfigured.
+  std::set<std::string> core_names;
+  for (const amcr::WordParameterInfo& info : amcr::wordParameterTable())
+    if (info.name != "table_cache_dir")
+      core_names.insert(info.name);
   for (const amcr::ParameterInfo& info : amcr::parameterTable())
     core_names.insert(info.name);
   for (const std::string& name : core_names)
@@ -215,6 +219,24 @@ TEST(ReconfigureTable, TheTablesLevelIsTheParametersThatBuildTheTables)
 
 namespace
 {
+// A choice's words in the .cfg (its enum's values) are those the core's table of word parameters takes.
+TEST(ReconfigureTable, ChoicesOfferTheCoresWords)
+{
+  const std::regex value(R"('value': '([^']*)')");
+  int choices = 0;
+  for (const amcr::WordParameterInfo& info : amcr::wordParameterTable())
+    for (const auto& d : amcr::AMCRConfig::__getParamDescriptions__())
+      if (d->name == info.name && !info.words.empty())
+      {
+        std::set<std::string> offered;
+        for (std::sregex_iterator it(d->edit_method.begin(), d->edit_method.end(), value), end; it != end; ++it)
+          offered.insert((*it)[1]);
+        EXPECT_EQ(offered, std::set<std::string>(info.words.begin(), info.words.end())) << info.name;
+        ++choices;
+      }
+  EXPECT_EQ(choices, 3) << "likelihood_form, deviation_space and ray_correspondence";
+}
+
 // The log line of a reconfiguration: whole numbers as integers, and a change of prototype_priors alone is a
 // change (it was not compared, so dynamic_reconfigure showed priors that were not in effect).
 TEST(ReconfigureTable, ChangesNameIntegersAsIntegersAndThePriors)

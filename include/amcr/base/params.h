@@ -255,7 +255,7 @@ struct RunParams
 };
 
 /// Every parameter: the groups together, read by name through
-/// parameterTable() and setParameter().
+/// parameterTable() and wordParameterTable().
 struct Params : ParticleCounts,
                 ProposalParams,
                 MemoryParams,
@@ -315,8 +315,24 @@ bool tablesDiffer(const Params& a, const Params& b);
 /// exactly) is refused.
 Params loadParams(const std::string& yaml_path, Params params = Params());
 
-/// Sets one parameter by name from a number, or (likelihood_form,
-/// deviation_space, prototype_priors, table_cache_dir) from a string. Throws ParameterError for an unknown name.
+/// Description of a parameter that is not a number: it is read and written
+/// as a word (a choice among `words`) or a text (no `words`).
+struct WordParameterInfo
+{
+  std::string name;
+  std::string takes;               ///< what it takes, for messages: "a word (paper or mixture)"
+  std::vector<std::string> words;  ///< the words of a choice, the default's first; empty for a free text
+};
+
+/// All parameters that are not numbers (likelihood_form, deviation_space,
+/// ray_correspondence, table_cache_dir, prototype_priors), in the order of
+/// config/amcr.yaml. With parameterTable() it is the one table by name that
+/// YAML files, rosparam and dynamic_reconfigure go through.
+const std::vector<WordParameterInfo>& wordParameterTable();
+
+/// Sets one parameter by name from a number, or one of wordParameterTable()
+/// from a string. Throws ParameterError for an unknown name, a value out of
+/// range or a word not among those the parameter takes.
 void setParameter(Params& params, const std::string& name, double value);
 void setParameter(Params& params, const std::string& name, const std::string& value);
 
@@ -328,6 +344,9 @@ std::string formatPriors(const std::map<std::string, double>& priors);
 
 /// Reads one numeric parameter by name.
 double getParameter(const Params& params, const std::string& name);
+/// Reads one parameter of wordParameterTable() by name, as setParameter
+/// takes it back (prototype_priors as formatPriors writes it).
+std::string getWordParameter(const Params& params, const std::string& name);
 
 /// True when every parameter of `a` equals `b`'s (numbers, forms, priors,
 /// table_cache_dir).

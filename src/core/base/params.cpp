@@ -4,6 +4,7 @@
 #include <functional>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 #include "amcr/base/errors.h"
 #include "amcr/base/resource_bounds.h"
@@ -121,9 +122,11 @@ const std::vector<NumericParameter>& numericParameters()
 #undef AMCR_DOUBLE
 #undef AMCR_INT
 
-const NumericParameter* findNumeric(const std::string& name)
+/// The entry of `table` named `name`, or nullptr.
+template <class Entry>
+const Entry* findIn(const std::vector<Entry>& table, const std::string& name)
 {
-  for (const auto& p : numericParameters())
+  for (const Entry& p : table)
     if (p.info.name == name)
       return &p;
   return nullptr;
@@ -136,22 +139,6 @@ void checkPrior(const std::string& label, double weight)
     throw ParameterError("parameter 'prototype_priors': an entry has no label");
   if (!std::isfinite(weight) || weight < 0.0)
     throw ParameterError("parameter 'prototype_priors': the weight of '" + label + "' must be a finite number >= 0");
-}
-
-/// What a parameter that is not a number takes, or nullptr.
-const char* wordParameter(const std::string& name)
-{
-  if (name == "likelihood_form")
-    return "a word (paper or mixture)";
-  if (name == "deviation_space")
-    return "a word (image or prototype)";
-  if (name == "ray_correspondence")
-    return "a word (affine or paper)";
-  if (name == "prototype_priors")
-    return "a map of label: weight";
-  if (name == "table_cache_dir")
-    return "a directory (absolute or ~/...), empty for the default, or none";
-  return nullptr;
 }
 
 std::string rangeText(const ParameterInfo& info)
@@ -170,6 +157,91 @@ void checkTableCacheDir(const std::string& dir)
     return;
   throw ParameterError("parameter 'table_cache_dir' = '" + dir +
                        "' must be an absolute path, a path starting with '~/', empty (the default place) or 'none'");
+}
+
+/// The words of a choice parameter with the value of each, the default's first.
+template <class Choice>
+using Words = std::vector<std::pair<std::string, Choice>>;
+
+const Words<LikelihoodForm>& likelihoodWords()
+{
+  static const Words<LikelihoodForm> words = {{"paper", LikelihoodForm::kPaper}, {"mixture", LikelihoodForm::kMixture}};
+  return words;
+}
+const Words<DeviationSpace>& deviationWords()
+{
+  static const Words<DeviationSpace> words = {{"image", DeviationSpace::kImage}, {"prototype", DeviationSpace::kPrototype}};
+  return words;
+}
+const Words<RayCorrespondence>& correspondenceWords()
+{
+  static const Words<RayCorrespondence> words = {{"affine", RayCorrespondence::kAffine}, {"paper", RayCorrespondence::kPaper}};
+  return words;
+}
+
+template <class Choice>
+std::string wordOf(const Words<Choice>& words, Choice value)
+{
+  for (const auto& word : words)
+    if (word.second == value)
+      return word.first;
+  return words.front().first;
+}
+
+/// One parameter that is not a number: its description and how to read and write it as text.
+struct WordParameter
+{
+  WordParameterInfo info;
+  std::function<std::string(const Params&)> get;
+  std::function<void(Params&, const std::string&)> set;
+};
+
+/// A choice among `words`, stored in `field` of Params (a member of one of
+/// its groups: the pointer converts, it is not deduced).
+template <class Choice>
+WordParameter choice(const std::string& name, typename Words<Choice>::value_type::second_type Params::*field,
+                     const Words<Choice>& words)
+{
+  WordParameter p;
+  p.info.name = name;
+  std::string listed, quoted;
+  for (const auto& word : words)
+  {
+    p.info.words.push_back(word.first);
+    listed += (listed.empty() ? "" : " or ") + word.first;
+    quoted += (quoted.empty() ? "'" : " or '") + word.first + "'";
+  }
+  p.info.takes = "a word (" + listed + ")";
+  p.get = [field, &words](const Params& params) { return wordOf(words, params.*field); };
+  p.set = [name, field, &words, quoted](Params& params, const std::string& value) {
+    for (const auto& word : words)
+      if (word.first == value)
+      {
+        params.*field = word.second;
+        return;
+      }
+    throw ParameterError("parameter '" + name + "' = '" + value + "' must be " + quoted);
+  };
+  return p;
+}
+
+const std::vector<WordParameter>& wordParameters()
+{
+  static const std::vector<WordParameter> table = {
+      {{"table_cache_dir", "a directory (absolute or ~/...), empty for the default, or none", {}},
+       [](const Params& p) { return p.table_cache_dir; },
+       [](Params& p, const std::string& value) {
+         checkTableCacheDir(value);
+         p.table_cache_dir = value;
+       }},
+      choice("likelihood_form", &Params::likelihood_form, likelihoodWords()),
+      choice("deviation_space", &Params::deviation_space, deviationWords()),
+      choice("ray_correspondence", &Params::ray_correspondence, correspondenceWords()),
+      {{"prototype_priors", "a map of label: weight", {}},
+       [](const Params& p) { return formatPriors(p.prototype_priors); },
+       [](Params& p, const std::string& value) { p.prototype_priors = parsePriors(value); }},
+  };
+  return table;
 }
 
 /// Pairs of values where one makes the other meaningless.
@@ -254,9 +326,9 @@ bool tablesDiffer(const Params& a, const Params& b)
 
 void setParameter(Params& params, const std::string& name, double value)
 {
-  const NumericParameter* p = findNumeric(name);
-  if (!p && wordParameter(name))
-    throw ParameterError("parameter '" + name + "' takes " + wordParameter(name) + ", not the number " +
+  const NumericParameter* p = findIn(numericParameters(), name);
+  if (const WordParameter* word = p ? nullptr : findIn(wordParameters(), name))
+    throw ParameterError("parameter '" + name + "' takes " + word->info.takes + ", not the number " +
                          formatNumber(value));
   if (!p)
     throw ParameterError("unknown parameter '" + name + "'");
@@ -277,48 +349,9 @@ void setParameter(Params& params, const std::string& name, double value)
 
 void setParameter(Params& params, const std::string& name, const std::string& value)
 {
-  if (name == "likelihood_form")
-  {
-    if (value == "paper")
-      params.likelihood_form = LikelihoodForm::kPaper;
-    else if (value == "mixture")
-      params.likelihood_form = LikelihoodForm::kMixture;
-    else
-      throw ParameterError("parameter 'likelihood_form' = '" + value + "' must be 'paper' or 'mixture'");
-    return;
-  }
-  if (name == "deviation_space")
-  {
-    if (value == "image")
-      params.deviation_space = DeviationSpace::kImage;
-    else if (value == "prototype")
-      params.deviation_space = DeviationSpace::kPrototype;
-    else
-      throw ParameterError("parameter 'deviation_space' = '" + value + "' must be 'image' or 'prototype'");
-    return;
-  }
-  if (name == "ray_correspondence")
-  {
-    if (value == "affine")
-      params.ray_correspondence = RayCorrespondence::kAffine;
-    else if (value == "paper")
-      params.ray_correspondence = RayCorrespondence::kPaper;
-    else
-      throw ParameterError("parameter 'ray_correspondence' = '" + value + "' must be 'affine' or 'paper'");
-    return;
-  }
-  if (name == "prototype_priors")
-  {
-    params.prototype_priors = parsePriors(value);
-    return;
-  }
-  if (name == "table_cache_dir")
-  {
-    checkTableCacheDir(value);
-    params.table_cache_dir = value;
-    return;
-  }
-  if (findNumeric(name))
+  if (const WordParameter* p = findIn(wordParameters(), name))
+    return p->set(params, value);
+  if (findIn(numericParameters(), name))
     throw ParameterError("parameter '" + name + "' takes a number, not '" + value + "'");
   throw ParameterError("unknown parameter '" + name + "'");
 }
@@ -369,28 +402,45 @@ std::string formatPriors(const std::map<std::string, double>& priors)
 
 double getParameter(const Params& params, const std::string& name)
 {
-  const NumericParameter* p = findNumeric(name);
+  const NumericParameter* p = findIn(numericParameters(), name);
   if (!p)
     throw ParameterError("unknown numeric parameter '" + name + "'");
   return p->get(params);
 }
 
+std::string getWordParameter(const Params& params, const std::string& name)
+{
+  const WordParameter* p = findIn(wordParameters(), name);
+  if (!p)
+    throw ParameterError("unknown word parameter '" + name + "'");
+  return p->get(params);
+}
+
+const std::vector<WordParameterInfo>& wordParameterTable()
+{
+  static const std::vector<WordParameterInfo> table = [] {
+    std::vector<WordParameterInfo> infos;
+    for (const auto& p : wordParameters())
+      infos.push_back(p.info);
+    return infos;
+  }();
+  return table;
+}
+
 bool sameParameters(const Params& a, const Params& b)
 {
-  for (const ParameterInfo& info : parameterTable())
-    if (getParameter(a, info.name) != getParameter(b, info.name))
+  for (const auto& p : numericParameters())
+    if (p.get(a) != p.get(b))
       return false;
-  return a.likelihood_form == b.likelihood_form && a.deviation_space == b.deviation_space &&
-         a.ray_correspondence == b.ray_correspondence && a.prototype_priors == b.prototype_priors &&
-         a.table_cache_dir == b.table_cache_dir;
+  for (const auto& p : wordParameters())  // the priors as maps: their text rounds the weights
+    if (p.info.name == "prototype_priors" ? a.prototype_priors != b.prototype_priors : p.get(a) != p.get(b))
+      return false;
+  return true;
 }
 
-std::string toString(LikelihoodForm form) { return form == LikelihoodForm::kPaper ? "paper" : "mixture"; }
+std::string toString(LikelihoodForm form) { return wordOf(likelihoodWords(), form); }
 
-std::string toString(DeviationSpace space) { return space == DeviationSpace::kImage ? "image" : "prototype"; }
+std::string toString(DeviationSpace space) { return wordOf(deviationWords(), space); }
 
-std::string toString(RayCorrespondence correspondence)
-{
-  return correspondence == RayCorrespondence::kAffine ? "affine" : "paper";
-}
+std::string toString(RayCorrespondence correspondence) { return wordOf(correspondenceWords(), correspondence); }
 }  // namespace amcr
