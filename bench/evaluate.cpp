@@ -55,6 +55,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "amcr/base/params.h"
+#include "amcr/io/params_file.h"
 #include "amcr/memory/prototype_memory.h"
 #include "amcr_method.h"
 #include "recall_funnel.h"

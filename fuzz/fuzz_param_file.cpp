@@ -6,6 +6,7 @@
 
 #include "amcr/base/errors.h"
 #include "amcr/base/params.h"
+#include "amcr/io/params_file.h"
 #include "fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)

@@ -10,6 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "amcr/base/params.h"
+#include "amcr/io/params_file.h"
 
 namespace
 {

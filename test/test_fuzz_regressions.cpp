@@ -8,6 +8,7 @@
 #include "amcr/base/errors.h"
 #include "amcr/io/image_file.h"
 #include "amcr/base/params.h"
+#include "amcr/io/params_file.h"
 #include "scene_drawing.h"
 
 namespace

@@ -14,6 +14,7 @@
 
 #include "amcr/base/errors.h"
 #include "amcr/base/params.h"
+#include "amcr/io/params_file.h"
 #include "scene_drawing.h"
 
 namespace

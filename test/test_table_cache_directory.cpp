@@ -8,6 +8,7 @@
 
 #include "amcr/base/errors.h"
 #include "amcr/base/params.h"
+#include "amcr/io/params_file.h"
 #include "amcr/memory/table_cache.h"
 #include "scene_drawing.h"
 

@@ -1,6 +1,6 @@
 // Radial-AMCR (paper 3.6): the API that the nodelet and the offline runner share.
 //
-//   amcr::Params params = amcr::loadParams("config/amcr.yaml");
+//   amcr::Params params = amcr::loadParams("config/amcr.yaml");  // amcr/io/params_file.h
 //   auto memory = std::make_shared<amcr::PrototypeMemory>(
 //       amcr::PrototypeMemory::loadDirectory("prototypes/", params));
 //   amcr::Recognizer recognizer(params, memory);

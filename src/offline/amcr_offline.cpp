@@ -21,6 +21,7 @@
 
 #include "amcr/base/errors.h"
 #include "amcr/base/params.h"
+#include "amcr/io/params_file.h"
 #include "amcr/memory/edge_model.h"
 #include "amcr/memory/edge_model_picture.h"
 #include "amcr/memory/prototype_memory.h"

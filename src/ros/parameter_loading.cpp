@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "amcr/base/errors.h"
+#include "amcr/io/params_file.h"
 
 namespace amcr_ros
 {

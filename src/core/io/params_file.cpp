@@ -1,6 +1,8 @@
 // loadParams: the parameter file read as text (so that a read error and
 // OpenCV's header line are dealt with first), then parsed by yaml-cpp. Every
 // error names the file and the line.
+#include "amcr/io/params_file.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -18,7 +20,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include "amcr/base/errors.h"
-#include "amcr/base/params.h"
 #include "amcr/base/resource_bounds.h"
 #include "number_text.h"
 
