@@ -21,8 +21,11 @@ class MotionModel
 {
 public:
   /// Reads motion_noise_translation, motion_noise_rotation and, with
-  /// ray_correspondence affine, motion_noise_shape.
-  explicit MotionModel(const Params& params);
+  /// `observation`'s ray_correspondence affine, motion_noise_shape.
+  MotionModel(const MotionParams& motion, const ObservationParams& observation);
+  /// The same from every parameter: for ParticleFilter and the tests, which
+  /// hold the whole Params.
+  explicit MotionModel(const Params& params) : MotionModel(params, params) {}
   MotionModel(double noise_translation, double noise_rotation, double noise_shape = 0.0);
 
   /// Moves V-particle `v` by `u` (turn, then move along the new heading).

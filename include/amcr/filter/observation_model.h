@@ -29,16 +29,20 @@ struct AffineFitRule
   RayCorrespondence ray_correspondence = RayCorrespondence::kAffine;
   int affine_refits = 0;          ///< re-estimates of A from the lookups along the fitted A
 
-  explicit AffineFitRule(const Params& params);
+  explicit AffineFitRule(const ObservationParams& params);
 };
 
 class ObservationModel
 {
 public:
-  /// Reads sigma_w, p_outlier, p_invalid, likelihood_form, max_ray_length,
+  /// Reads sigma_w, p_outlier, p_invalid, likelihood_form,
   /// min_triangle_area, max_affine_scale, deviation_space,
-  /// ray_correspondence and affine_refits.
-  explicit ObservationModel(const Params& params);
+  /// ray_correspondence and affine_refits of `observation`, and the
+  /// largest deviation of the mixture form, max_ray_length, of `scan`.
+  ObservationModel(const ObservationParams& observation, const ScanParams& scan);
+  /// The same from every parameter: for ParticleFilter and the tests, which
+  /// hold the whole Params.
+  explicit ObservationModel(const Params& params) : ObservationModel(params, params) {}
 
   /// log p(dw) of one valid ray with deviation dw px (paper eq. 5, or the
   /// normalised mixture): the definition the fast path tabulates.

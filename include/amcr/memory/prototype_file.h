@@ -29,6 +29,6 @@ struct LoadedPrototype
 /// image with no shape leaves `prototype` null with a warning; a cache file
 /// that is refused, or cannot be written, gives a warning and a built table.
 /// Thread-safe; never throws for a bad file.
-LoadedPrototype loadPrototypeFile(const std::string& path, const std::string& label, const Params& params,
+LoadedPrototype loadPrototypeFile(const std::string& path, const std::string& label, const MemoryParams& params,
                                   const TableCache& cache, const std::string& instance = std::string());
 }  // namespace amcr

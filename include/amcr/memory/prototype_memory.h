@@ -40,7 +40,7 @@ public:
   /// takes more than a few seconds sends a
   /// progress line to `progress` every few seconds (files done, built, read
   /// from the cache; called from the loading threads, one at a time).
-  static PrototypeMemory loadDirectory(const std::string& directory, const Params& params,
+  static PrototypeMemory loadDirectory(const std::string& directory, const MemoryParams& params,
                                        const WarningSink& warn = WarningSink(),
                                        const WarningSink& progress = WarningSink());
 
@@ -49,7 +49,7 @@ public:
   /// label (MemoryError when the label is taken; the instance is the
   /// label); with one, an instance of `label`, new or not (MemoryError when
   /// the instance is taken). MemoryError too when the image holds no shape.
-  void add(const std::string& label, const cv::Mat& image, const Params& params,
+  void add(const std::string& label, const cv::Mat& image, const MemoryParams& params,
            const std::string& instance = std::string());
 
   /// Removes every prototype of `label` and returns how many there were (0

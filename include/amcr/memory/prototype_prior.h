@@ -18,7 +18,7 @@ public:
   /// named), params.m_particles_per_v and params.m_particles_per_prototype.
   /// ParameterError for a label the memory does not have, or when every
   /// weight is 0.
-  PrototypePrior(const PrototypeMemory& memory, const Params& params);
+  PrototypePrior(const PrototypeMemory& memory, const ParticleCounts& params);
 
   /// The prototype of each of a V-particle's M-particle slots at seeding:
   /// m_particles_per_v of them (or, when it is 0, m_particles_per_prototype

@@ -91,5 +91,5 @@ struct CutShape
 /// throws for a bad region or image: the answer's `why` says what is wrong
 /// (an empty region, one outside the image, an empty or unsupported image, no
 /// edges in the region, no closed outline in it).
-CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, const Params& params);
+CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, const EdgeParams& params);
 }  // namespace amcr

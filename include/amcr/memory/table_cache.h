@@ -29,7 +29,7 @@ namespace amcr
 /// files of an older build are rebuilt, not read.
 constexpr std::uint32_t kTableFormatVersion = 3;  // 2: the table stride; 3: grey templates (kind, scan image)
 
-/// The directory Params::table_cache_dir names, "~/" expanded: "" (the
+/// The directory MemoryParams::table_cache_dir names, "~/" expanded: "" (the
 /// default) is $ROS_HOME/amcr/tables, or $HOME/.ros/amcr/tables when
 /// ROS_HOME is not set (roslaunch's own default for ROS_HOME). Returns ""
 /// when the cache is off: "none", or the default with neither variable set
@@ -42,7 +42,7 @@ std::string tableCacheDirectory(const std::string& setting, std::string* why_off
 /// table's constants (direction bins, distance unit, "no edge" value),
 /// kTableFormatVersion and the OpenCV version (whose resize, distance
 /// transform and blur make the table).
-std::uint64_t tableCacheKey(std::uint64_t image_hash, const Params& params);
+std::uint64_t tableCacheKey(std::uint64_t image_hash, const MemoryParams& params);
 
 /// How the tables of a memory were found (PrototypeMemory::cacheCounts()).
 struct TableCacheCounts

@@ -30,5 +30,5 @@ struct TableStrideChoice
 /// otherwise params.table_stride, over_budget when it does not fit. The
 /// size is the bound of maxTableBytesPerPrototype (a square prototype):
 /// elongated shapes take less.
-TableStrideChoice chooseTableStride(std::size_t prototype_count, const Params& params);
+TableStrideChoice chooseTableStride(std::size_t prototype_count, const MemoryParams& params);
 }  // namespace amcr

@@ -27,7 +27,7 @@ std::shared_ptr<const PrototypeMemory> checkedMemory(std::shared_ptr<const Proto
 }
 
 /// The prior, once the M-particles it asks for are within kMaxMParticles.
-PrototypePrior checkedPrior(const PrototypeMemory& memory, const Params& params)
+PrototypePrior checkedPrior(const PrototypeMemory& memory, const ParticleCounts& params)
 {
   PrototypePrior prior(memory, params);
   if (params.m_particles_per_v > 0)
@@ -40,14 +40,15 @@ PrototypePrior checkedPrior(const PrototypeMemory& memory, const Params& params)
 }
 
 /// The proposal index of `memory` under `prior` (null when index_share is 0).
-std::shared_ptr<const ProposalIndex> buildIndex(const Params& params, const PrototypeMemory& memory,
-                                                const PrototypePrior& prior, const WarningSink& warn)
+std::shared_ptr<const ProposalIndex> buildIndex(const ProposalParams& params, const MemoryParams& tables,
+                                                const PrototypeMemory& memory, const PrototypePrior& prior,
+                                                const WarningSink& warn)
 {
   if (params.index_share <= 0.0)
     return nullptr;
   // The k-d tree is cached beside the tables (table_cache_dir); the memory's
   // load has already reported a cache that cannot be used.
-  const TableCache cache(tableCacheDirectory(params.table_cache_dir));
+  const TableCache cache(tableCacheDirectory(tables.table_cache_dir));
   return std::make_shared<const ProposalIndex>(memory, params.index_stride, prior.activeMask(), warn,
                                                cache.readable() ? &cache : nullptr,
                                                static_cast<std::size_t>(params.index_max_entries));
@@ -55,7 +56,7 @@ std::shared_ptr<const ProposalIndex> buildIndex(const Params& params, const Prot
 
 /// The radial-profile index of `memory` under `prior` (null when index_share
 /// is 0 or profile_index is off).
-std::shared_ptr<const ProfileIndex> buildProfileIndex(const Params& params, const PrototypeMemory& memory,
+std::shared_ptr<const ProfileIndex> buildProfileIndex(const ProposalParams& params, const PrototypeMemory& memory,
                                                       const PrototypePrior& prior, const WarningSink& warn)
 {
   if (params.index_share <= 0.0 || !params.profile_index)
@@ -94,7 +95,7 @@ FilterMemory::FilterMemory(const Params& params, std::shared_ptr<const Prototype
   : params_(params), memory_(checkedMemory(std::move(memory))), prior_(checkedPrior(*memory_, params_))
 {
   const WarningSink warn = [this](const std::string& line) { warnings_.push_back(line); };
-  index_ = buildIndex(params_, *memory_, prior_, warn);
+  index_ = buildIndex(params_, params_, *memory_, prior_, warn);
   profile_index_ = buildProfileIndex(params_, *memory_, prior_, warn);
   places_ = buildPlaces(params_, *memory_, prior_, warn);
 }

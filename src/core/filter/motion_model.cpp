@@ -6,9 +6,9 @@
 
 namespace amcr
 {
-MotionModel::MotionModel(const Params& params)
-  : MotionModel(params.motion_noise_translation, params.motion_noise_rotation,
-                params.ray_correspondence == RayCorrespondence::kAffine ? params.motion_noise_shape : 0.0)
+MotionModel::MotionModel(const MotionParams& motion, const ObservationParams& observation)
+  : MotionModel(motion.motion_noise_translation, motion.motion_noise_rotation,
+                observation.ray_correspondence == RayCorrespondence::kAffine ? motion.motion_noise_shape : 0.0)
 {
 }
 

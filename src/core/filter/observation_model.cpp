@@ -24,7 +24,7 @@ void storeAffine(const RelationalAffine& affine, MParticleSet& m, std::size_t i)
 }
 }  // namespace
 
-AffineFitRule::AffineFitRule(const Params& params)
+AffineFitRule::AffineFitRule(const ObservationParams& params)
   : min_triangle_area(static_cast<float>(params.min_triangle_area))
   , max_affine_scale(static_cast<float>(params.max_affine_scale))
   , deviation_space(params.deviation_space)
@@ -33,14 +33,14 @@ AffineFitRule::AffineFitRule(const Params& params)
 {
 }
 
-ObservationModel::ObservationModel(const Params& params)
+ObservationModel::ObservationModel(const ObservationParams& params, const ScanParams& scan)
   : sigma_w_(params.sigma_w)
   , p_outlier_(params.p_outlier)
   , outlier_density_(params.likelihood_form == LikelihoodForm::kPaper ? params.p_outlier
-                                                                       : params.p_outlier / params.max_ray_length)
+                                                                       : params.p_outlier / scan.max_ray_length)
   , log_invalid_(std::log(std::max(params.likelihood_form == LikelihoodForm::kPaper
                                         ? params.p_invalid
-                                        : params.p_invalid / params.max_ray_length,
+                                        : params.p_invalid / scan.max_ray_length,
                                     1e-300)))
   , fit_(params)
 {

@@ -6,7 +6,7 @@
 
 namespace amcr
 {
-LoadedPrototype loadPrototypeFile(const std::string& path, const std::string& label, const Params& params,
+LoadedPrototype loadPrototypeFile(const std::string& path, const std::string& label, const MemoryParams& params,
                                   const TableCache& cache, const std::string& instance)
 {
   LoadedPrototype loaded;

@@ -72,7 +72,7 @@ void checkTableBound(std::size_t held, std::size_t count, int prototype_size, in
 }
 }  // namespace
 
-PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, const Params& params,
+PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, const MemoryParams& params,
                                                const WarningSink& warn, const WarningSink& progress)
 {
   params.validate();
@@ -82,7 +82,7 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
     warn(stride.reason);
   else if (stride.stride > 1 && params.table_stride == 0 && progress)
     progress(stride.reason);  // compact tables chosen: say why (exact ones go without a word)
-  Params table_params = params;  // what the tables are built with, the stride resolved
+  MemoryParams table_params = params;  // what the tables are built with, the stride resolved
   table_params.table_stride = stride.stride;
   checkTableBound(0, files.size(), params.prototype_size, table_params.table_stride);
 
@@ -137,7 +137,7 @@ PrototypeMemory PrototypeMemory::loadDirectory(const std::string& directory, con
   return memory;
 }
 
-void PrototypeMemory::add(const std::string& label, const cv::Mat& image, const Params& params,
+void PrototypeMemory::add(const std::string& label, const cv::Mat& image, const MemoryParams& params,
                           const std::string& instance)
 {
   if (instance.empty() && find(label) >= 0)

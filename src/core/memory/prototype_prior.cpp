@@ -13,7 +13,7 @@ namespace
 /// Each prototype's weight: its label's (1 unless params.prototype_priors
 /// names the label) shared equally among the label's instances, so that a
 /// label weighs the same whether one image or twenty show it.
-std::vector<double> priorWeights(const PrototypeMemory& memory, const Params& params)
+std::vector<double> priorWeights(const PrototypeMemory& memory, const ParticleCounts& params)
 {
   std::vector<double> weight(memory.size(), 1.0);
   for (const auto& prior : params.prototype_priors)
@@ -51,7 +51,7 @@ std::vector<int> shareSlots(int slots, const std::vector<int>& active, const std
 }
 }  // namespace
 
-PrototypePrior::PrototypePrior(const PrototypeMemory& memory, const Params& params)
+PrototypePrior::PrototypePrior(const PrototypeMemory& memory, const ParticleCounts& params)
 {
   const std::vector<double> weight = priorWeights(memory, params);
   double total = 0.0;

@@ -151,7 +151,7 @@ std::vector<cv::Point2f> rectangleRegion(double x, double y, double width, doubl
   return {p(x, y), p(x + width, y), p(x + width, y + height), p(x, y + height)};
 }
 
-CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, const Params& params)
+CutShape cutShape(const cv::Mat& image, const std::vector<cv::Point2f>& region, const EdgeParams& params)
 {
   // The region.
   if (region.size() < 3)

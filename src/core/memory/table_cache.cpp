@@ -125,7 +125,7 @@ std::string tableCacheDirectory(const std::string& setting, std::string* why_off
   return "";
 }
 
-std::uint64_t tableCacheKey(std::uint64_t image_hash, const Params& params)
+std::uint64_t tableCacheKey(std::uint64_t image_hash, const MemoryParams& params)
 {
   ContentHash key;
   key.addText("amcr prototype table").addValue(kTableFormatVersion).addText(CV_VERSION);

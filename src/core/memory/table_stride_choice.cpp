@@ -17,12 +17,12 @@ std::int64_t maxTableBytesPerPrototype(int prototype_size, int table_stride)
 
 namespace
 {
-std::int64_t tableBytes(std::size_t prototype_count, const Params& params, int stride)
+std::int64_t tableBytes(std::size_t prototype_count, const MemoryParams& params, int stride)
 {
   return static_cast<std::int64_t>(prototype_count) * maxTableBytesPerPrototype(params.prototype_size, stride);
 }
 
-std::string describe(std::size_t prototype_count, const Params& params, int stride)
+std::string describe(std::size_t prototype_count, const MemoryParams& params, int stride)
 {
   return std::to_string(prototype_count) + " prototypes at prototype_size " + std::to_string(params.prototype_size) +
          " take up to " + formatBytes(static_cast<double>(tableBytes(prototype_count, params, stride))) +
@@ -30,7 +30,7 @@ std::string describe(std::size_t prototype_count, const Params& params, int stri
 }
 }  // namespace
 
-TableStrideChoice chooseTableStride(std::size_t prototype_count, const Params& params)
+TableStrideChoice chooseTableStride(std::size_t prototype_count, const MemoryParams& params)
 {
   const std::int64_t budget = static_cast<std::int64_t>(params.table_budget_mb) * 1'000'000;
   const std::string budget_text = "table_budget_mb " + std::to_string(params.table_budget_mb);
