@@ -215,7 +215,7 @@ void measureParticles(const amcr::Recognizer& recognizer, const std::vector<True
           funnel.best_likelihood_quantile < 0 ? quantile : std::min(funnel.best_likelihood_quantile, quantile);
     }
     const amcr::VParticleCluster& c = clusters[i];
-    const bool cluster = amcr::isConverged(c, filter.params().cluster_min_share) &&
+    const bool cluster = c.converged &&
                          std::any_of(on.begin(), on.end(), [&](const OnPlace& place) {
                            return place.prototype == c.prototype &&
                                   std::hypot(c.mean.x - place.table.x, c.mean.y - place.table.y) <= tolerance.table_px;

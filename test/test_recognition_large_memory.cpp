@@ -216,7 +216,7 @@ TEST(KldSampling, TheCountFallsAsTheParticlesConvergeAndStaysInItsBounds)
       if (k == 0)
         continue;
       fewest = std::min(fewest, count);
-      if (amcr::isConverged(clusters[v], p.cluster_min_share))
+      if (clusters[v].converged)
       {
         converged_sum += count;
         ++converged_n;

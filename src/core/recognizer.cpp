@@ -42,7 +42,7 @@ std::vector<HeldObject> heldObjects(const std::vector<RecognizedObject>& objects
 Recognizer::Recognizer(const Params& params, std::shared_ptr<const PrototypeMemory> memory)
   : params_((params.validate(), params))
   , filter_(params_, std::move(memory))
-  , tracker_(params_)
+  , tracker_(params_, LifecycleRule(params_, params_))
   , budget_(params_.frame_budget_ms)
 {
 }
@@ -50,7 +50,7 @@ Recognizer::Recognizer(const Params& params, std::shared_ptr<const PrototypeMemo
 Recognizer::Recognizer(FilterMemory memory)
   : params_((memory.params().validate(), memory.params()))
   , filter_(std::move(memory))
-  , tracker_(params_)
+  , tracker_(params_, LifecycleRule(params_, params_))
   , budget_(params_.frame_budget_ms)
 {
 }
@@ -137,13 +137,14 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   const double extraction_start = budget_.now();
   result.times.updates_ms = extraction_start - phase_start;
   // min_object_size is in input px (what a user measures in the image).
-  Params extraction_params = params_;
+  ExtractionParams extraction_params = params_;
   extraction_params.min_object_size = params_.min_object_size * scale_.factor();
-  Extraction extraction = extractObjects(readFilter(filter_), scanner, tracker_.tracks(), extraction_params);
+  Extraction extraction = extractObjects(readFilter(filter_), scanner, tracker_.tracks(), extraction_params,
+                                         params_.max_affine_scale, params_.num_threads);
   filter_.addEvidence(extraction.feedback.evidence);
   filter_.setLeading(std::move(extraction.feedback.leading));
   for (const VParticleCluster& c : extraction.clusters)
-    result.converged_v_particles += isConverged(c, params_.cluster_min_share) ? 1 : 0;
+    result.converged_v_particles += c.converged ? 1 : 0;
   // The life cycle (track_registry.h), then attention: what is held is
   // explained, and V-resampling looks elsewhere.
   result.objects = std::move(extraction.objects);
@@ -227,7 +228,7 @@ FilterView Recognizer::view() const
     VParticleView particle;
     particle.position = input(cv::Point2f(v[i].x, v[i].y));
     particle.theta = v[i].theta;
-    if (isConverged(clusters[i], params_.cluster_min_share))
+    if (clusters[i].converged)
       particle.dominant_prototype = clusters[i].prototype;
     if (i < trails_.size())
     {

@@ -22,9 +22,9 @@ namespace amcr
 class FlowTracker
 {
 public:
-  /// Reads flow_window, flow_levels, flow_max_error and the life cycle's
-  /// thresholds (LifecycleRule).
-  explicit FlowTracker(const Params& params);
+  /// Reads flow_window, flow_levels and flow_max_error; the track registry
+  /// follows `rule`.
+  FlowTracker(const TrackingParams& params, const LifecycleRule& rule);
 
   /// Takes the next frame (8-bit grey).
   void push(const cv::Mat& gray8) { flow_.push(gray8); }

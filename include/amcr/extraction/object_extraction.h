@@ -19,12 +19,12 @@ struct VParticleCluster
   float share = 0.f;       ///< share of the V-particle's M-particles in the cluster
   Affine image_to_table;   ///< mean A of the cluster's M-particles with a valid A
   bool has_affine = false;
+  /// Focused enough to stand for its V-particle's interpretation: it holds
+  /// at least cluster_min_share of the V-particle's M-particles. Set by
+  /// dominantClusters, the one place of the extraction that reads
+  /// cluster_min_share; everything after reads this.
+  bool converged = false;
 };
-
-/// Whether a cluster is focused enough to stand for its V-particle's
-/// interpretation: it holds at least `min_share` (params.cluster_min_share)
-/// of the V-particle's M-particles. The one test of "converged" everywhere.
-inline bool isConverged(const VParticleCluster& cluster, double min_share) { return cluster.share >= min_share; }
 
 /// Finds the densest cluster among M-particles [begin, end): a mean shift of
 /// `radius` table px from the most likely particle of each prototype, most
@@ -34,9 +34,11 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
                                  double radius);
 
 /// The dominant cluster of every V-particle (index = V index) of `v`, whose
-/// M-particles in `m` are `ranges` (one per V-particle).
+/// M-particles in `m` are `ranges` (one per V-particle): of radius
+/// params.cluster_radius, converged at params.cluster_min_share.
 std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, const MParticleSet& m,
-                                               const std::vector<MRange>& ranges, int prototype_count, double radius);
+                                               const std::vector<MRange>& ranges, int prototype_count,
+                                               const ExtractionParams& params);
 
 /// V-particles that agree on one object: the same prototype and affines that
 /// map each other's correspondences within `group_tolerance` input px.
@@ -47,10 +49,12 @@ struct ObjectHypothesis
   Affine table_to_image;     ///< fitted to the members' correspondences
 };
 
-/// Groups converged clusters (share >= cluster_min_share), largest share
-/// first; every group of at least `min_members` members becomes a hypothesis
-/// with an affine fitted robustly to all its correspondences.
+/// Groups converged clusters, largest share first, within
+/// params.group_tolerance; every group of at least `min_members` members
+/// becomes a hypothesis with an affine fitted robustly to all its
+/// correspondences (to the seed's own when they spread less than twice
+/// params.cluster_radius).
 std::vector<ObjectHypothesis> groupClusters(const std::vector<VParticle>& v,
-                                            const std::vector<VParticleCluster>& clusters, const Params& params,
-                                            int min_members);
+                                            const std::vector<VParticleCluster>& clusters,
+                                            const ExtractionParams& params, int min_members);
 }  // namespace amcr

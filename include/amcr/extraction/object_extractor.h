@@ -77,7 +77,8 @@ FilterReading readFilter(const ParticleFilter& filter);
 /// affine refined on the image's edges and verified against it, and the
 /// report with its hysteresis for tracked objects (spec "Output", "Tracking").
 /// Lengths in `params` are px of the scanned image (the recognizer's working
-/// image), min_object_size included.
+/// image), min_object_size included; `max_affine_scale` (ObservationParams)
+/// bounds the fits' scale and `num_threads` (RunParams) is their threads.
 Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, const TrackRegistry& tracks,
-                          const Params& params);
+                          const ExtractionParams& params, double max_affine_scale, int num_threads);
 }  // namespace amcr

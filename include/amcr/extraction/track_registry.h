@@ -27,7 +27,8 @@
 
 namespace amcr
 {
-/// The thresholds of the life cycle (from Params).
+/// The thresholds of the life cycle (from TrackingParams, and the report's
+/// of ExtractionParams).
 struct LifecycleRule
 {
   int confirm_frames = 3;   ///< reports that make a tentative object confirmed
@@ -41,7 +42,7 @@ struct LifecycleRule
   double rival_keep_support = 0.29;
 
   LifecycleRule() = default;
-  explicit LifecycleRule(const Params& params);
+  LifecycleRule(const TrackingParams& tracking, const ExtractionParams& extraction);
 };
 
 /// One object: as last reported (outline and pose moved by the flow since),

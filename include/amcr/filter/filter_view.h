@@ -30,7 +30,7 @@ struct VParticleView
   cv::Point2f position;  ///< input px
   float theta = 0.f;     ///< heading, rad
   /// The prototype of its dominant M-cluster when that cluster is converged
-  /// (isConverged, as the result extraction decides), else -1.
+  /// (VParticleCluster::converged, as the result extraction decides), else -1.
   int dominant_prototype = -1;
   FlowTrail trail;
   /// Whether its last move was chosen to decide between `competing` (else

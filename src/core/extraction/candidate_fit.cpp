@@ -31,7 +31,7 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   double smallest = 0, largest = 0;
   affineScales(table_to_image, smallest, largest);
   Affine image_to_table;
-  if (largest > in.params.max_affine_scale || smallest < 1.0 / in.params.max_affine_scale ||
+  if (largest > in.max_affine_scale || smallest < 1.0 / in.max_affine_scale ||
       !invertAffine(table_to_image, image_to_table))
     return false;
   const bool use_homography = perspective != nullptr && perspective->used;
@@ -64,7 +64,7 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   const std::vector<VParticle>& v = in.v_particles;
   for (const VParticleCluster& c : in.clusters)
   {
-    if (c.prototype != prototype || !isConverged(c, in.params.cluster_min_share))
+    if (c.prototype != prototype || !c.converged)
       continue;
     const cv::Point2d image_point(v[c.v].x, v[c.v].y);
     const cv::Point2d predicted = toImage(cv::Point2d(c.mean));
@@ -119,7 +119,7 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
   PerspectiveRule rule;
   rule.tolerance = candidate.score_tolerance;
   rule.part_shift = in.params.part_shift;
-  rule.max_scale = in.params.max_affine_scale;
+  rule.max_scale = in.max_affine_scale;
   const PerspectiveFit fit = choosePerspective(in.memory[prototype], in.scanner, candidate.table_to_image,
                                                candidate.object.score, in.params.refine_iterations,
                                                in.params.refine_search, rule);
@@ -131,11 +131,11 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
 
 /// Each start refined on the image's edges and verified; of a start's
 /// affines the best fit. Best score first (stable). The starts are fitted
-/// in parallel (params.num_threads), each into its own slot, and kept in
+/// in parallel (num_threads), each into its own slot, and kept in
 /// their order: the same candidates whatever the thread count.
 std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vector<FitStart>& starts)
 {
-  const int threads = resolveThreads(in.params.num_threads);
+  const int threads = resolveThreads(in.num_threads);
   std::vector<Candidate> fitted(starts.size());
   std::vector<char> found(starts.size(), 0);
   parallelFor(static_cast<int>(starts.size()), threads, [&](int s) {

@@ -52,8 +52,10 @@ struct ExtractionInput
   const std::vector<VParticleCluster>& clusters;  ///< each V-particle's dominant cluster
   const DiscriminativePlaces* look_alikes;         ///< the memory's look-alike pairs; null: none
   const RadialScanner& scanner;
-  const Params& params;
+  const ExtractionParams& params;
   const PrototypeMemory& memory;
+  double max_affine_scale;             ///< of the observation model (ObservationParams): the fits' scale bound
+  int num_threads;                     ///< RunParams::num_threads: the fits' and the rival checks' threads
   const RivalTable* rivals = nullptr;  ///< rivalTable() of the frame's starts; none: fitted where needed
 };
 
@@ -90,7 +92,7 @@ bool turnOntoDistinguishingParts(const ExtractionInput& in, int prototype, const
 
 /// Whether a candidate passes its rival check: at least rival_part_support
 /// of its distinguishing points on edges (`tracked`: kKeepTrackRatio of it).
-bool passesRivals(const Params& params, const Candidate& candidate, bool tracked);
+bool passesRivals(const ExtractionParams& params, const Candidate& candidate, bool tracked);
 
 /// A candidate that verifies better than an overlapping look-alike where
 /// the two differ takes over its support (look_alike_support.cpp).

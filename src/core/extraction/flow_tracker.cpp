@@ -107,8 +107,8 @@ void moveWithNeighbours(const std::vector<cv::Point2f>& from, const std::vector<
 }
 }  // namespace
 
-FlowTracker::FlowTracker(const Params& params)
-  : flow_(params.flow_window, params.flow_levels, params.flow_max_error), tracks_(LifecycleRule(params))
+FlowTracker::FlowTracker(const TrackingParams& params, const LifecycleRule& rule)
+  : flow_(params.flow_window, params.flow_levels, params.flow_max_error), tracks_(rule)
 {
 }
 

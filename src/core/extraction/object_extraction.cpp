@@ -119,13 +119,15 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
 }
 
 std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, const MParticleSet& m,
-                                               const std::vector<MRange>& ranges, int prototype_count, double radius)
+                                               const std::vector<MRange>& ranges, int prototype_count,
+                                               const ExtractionParams& params)
 {
   std::vector<VParticleCluster> clusters(v.size());
   for (std::size_t i = 0; i < v.size(); ++i)
   {
-    clusters[i] = dominantCluster(m, ranges[i].begin, ranges[i].end, prototype_count, radius);
+    clusters[i] = dominantCluster(m, ranges[i].begin, ranges[i].end, prototype_count, params.cluster_radius);
     clusters[i].v = static_cast<int>(i);
+    clusters[i].converged = clusters[i].share >= params.cluster_min_share;
   }
   return clusters;
 }
@@ -158,12 +160,12 @@ bool wellSpread(const std::vector<cv::Point2f>& points, double min_extent)
 }  // namespace
 
 std::vector<ObjectHypothesis> groupClusters(const std::vector<VParticle>& v,
-                                            const std::vector<VParticleCluster>& clusters, const Params& params,
-                                            int min_members)
+                                            const std::vector<VParticleCluster>& clusters,
+                                            const ExtractionParams& params, int min_members)
 {
   std::vector<int> order;
   for (std::size_t i = 0; i < clusters.size(); ++i)
-    if (clusters[i].has_affine && isConverged(clusters[i], params.cluster_min_share))
+    if (clusters[i].has_affine && clusters[i].converged)
       order.push_back(static_cast<int>(i));
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return clusters[a].share > clusters[b].share; });

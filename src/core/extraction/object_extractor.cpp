@@ -32,7 +32,7 @@ std::vector<EvidenceBonus> verificationEvidence(const ExtractionInput& in, const
   const std::vector<VParticle>& v = in.v_particles;
   for (const VParticleCluster& c : in.clusters)
   {
-    if (!isConverged(c, in.params.cluster_min_share))
+    if (!c.converged)
       continue;
     double best = -1.0;
     for (const Candidate& candidate : candidates)
@@ -74,7 +74,7 @@ std::vector<LeadingHypothesis> leadingHypotheses(const ExtractionInput& in, cons
 /// Reports what passes the decision threshold; of two overlapping objects
 /// the better one; a new object only while the registry has room
 /// (max_objects), counting those it had none for.
-void report(const Params& params, const TrackRegistry& registry, std::vector<Candidate>& candidates,
+void report(const ExtractionParams& params, const TrackRegistry& registry, std::vector<Candidate>& candidates,
             Extraction& extraction)
 {
   int new_tracks = 0;
@@ -121,7 +121,7 @@ void report(const Params& params, const TrackRegistry& registry, std::vector<Can
 std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter)
 {
   return dominantClusters(filter.vParticles(), filter.mParticles(), filter.mRanges(),
-                          static_cast<int>(filter.memory().size()), filter.params().cluster_radius);
+                          static_cast<int>(filter.memory().size()), filter.params());
 }
 
 FilterReading readFilter(const ParticleFilter& filter)
@@ -130,16 +130,18 @@ FilterReading readFilter(const ParticleFilter& filter)
 }
 
 Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, const TrackRegistry& tracks,
-                          const Params& params)
+                          const ExtractionParams& params, double max_affine_scale, int num_threads)
 {
   Extraction extraction;
   extraction.clusters = std::move(filter.clusters);
   const std::vector<VParticle>& v = filter.v_particles;
-  const ExtractionInput plain{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory};
+  const ExtractionInput plain{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory,
+                              max_affine_scale, num_threads};
   const std::vector<FitStart> starts = fitStarts(plain, tracks);
   // The generic rivals of the prototypes fitted in this frame, once each.
   const RivalTable rivals = rivalTable(plain, starts);
-  const ExtractionInput in{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory, &rivals};
+  const ExtractionInput in{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory,
+                           max_affine_scale, num_threads, &rivals};
   std::vector<Candidate> candidates = fitCandidates(in, starts);
   verifyRivals(in, candidates);
   if (in.params.competing_fits > 0)

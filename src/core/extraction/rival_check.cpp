@@ -75,7 +75,7 @@ RivalTable rivalTable(const ExtractionInput& in, const std::vector<FitStart>& st
   for (const FitStart& start : starts)
     if (std::find(prototypes.begin(), prototypes.end(), start.prototype) == prototypes.end())
       prototypes.push_back(start.prototype);
-  parallelFor(static_cast<int>(prototypes.size()), resolveThreads(in.params.num_threads),
+  parallelFor(static_cast<int>(prototypes.size()), resolveThreads(in.num_threads),
               [&](int i) { table[prototypes[i]] = genericRivals(in.memory[prototypes[i]]); });
   return table;
 }
@@ -150,7 +150,7 @@ void verifyRivals(const ExtractionInput& in, std::vector<Candidate>& candidates)
   if (!(in.params.rival_part_support > 0.0))
     return;
   const double could_report = kKeepTrackRatio * in.params.decision_threshold;
-  parallelFor(static_cast<int>(candidates.size()), resolveThreads(in.params.num_threads), [&](int i) {
+  parallelFor(static_cast<int>(candidates.size()), resolveThreads(in.num_threads), [&](int i) {
     Candidate& candidate = candidates[i];
     if (candidate.object.score < could_report)
       return;
@@ -163,7 +163,7 @@ void verifyRivals(const ExtractionInput& in, std::vector<Candidate>& candidates)
   });
 }
 
-bool passesRivals(const Params& params, const Candidate& candidate, bool tracked)
+bool passesRivals(const ExtractionParams& params, const Candidate& candidate, bool tracked)
 {
   return candidate.object.rival_support >= params.rival_part_support * (tracked ? kKeepTrackRatio : 1.0);
 }

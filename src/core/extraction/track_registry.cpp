@@ -63,13 +63,13 @@ cv::Point2d outlineCentre(const std::vector<cv::Point2d>& outline)
   return {box.x + 0.5 * box.width, box.y + 0.5 * box.height};
 }
 
-LifecycleRule::LifecycleRule(const Params& params)
-  : confirm_frames(params.confirm_frames)
-  , lost_frames(params.lost_frames)
-  , recall_frames(params.recall_frames)
-  , max_objects(params.max_objects)
-  , hold_score(params.decision_threshold)
-  , rival_keep_support(extraction_steps::kKeepTrackRatio * params.rival_part_support)
+LifecycleRule::LifecycleRule(const TrackingParams& tracking, const ExtractionParams& extraction)
+  : confirm_frames(tracking.confirm_frames)
+  , lost_frames(tracking.lost_frames)
+  , recall_frames(tracking.recall_frames)
+  , max_objects(tracking.max_objects)
+  , hold_score(extraction.decision_threshold)
+  , rival_keep_support(extraction_steps::kKeepTrackRatio * extraction.rival_part_support)
 {
 }
 
