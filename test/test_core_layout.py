@@ -218,6 +218,149 @@ class ClassSize(unittest.TestCase):
         self.assertEqual(class_members(text), {"Counted": {"a_", "b_", "c_", "d_"}})
 
 
+# The core's functions and classes that take or keep the whole Params (params.h), by file: what builds
+# everything from it, what reads it by name or from a file, and what is still to be given its groups.
+# Every other component takes the group(s) of Params it reads (ObservationParams, ScanParams, ...), to
+# which a Params binds. "*": the whole file (the parameters' own table and file).
+WHOLE_PARAMS = {
+    "include/amcr/base/params.h": "*",  # the table by name, the checks
+    "src/core/base/params.cpp": "*",
+    "include/amcr/io/params_file.h": "*",  # the parameter file
+    "src/core/io/params_file.cpp": "*",
+    # The recognizer builds every component from the whole Params and keeps them for params().
+    "include/amcr/recognizer.h": {"Recognizer", "params", "params_"},
+    "src/core/recognizer.cpp": {"Recognizer::Recognizer"},
+    # A memory made ready for a filter's Params, handed to ParticleFilter with them; the look-alike
+    # pairs are built with the attention's, the extraction's, the index's, the threads and the cache's.
+    "include/amcr/filter/filter_memory.h": {"FilterMemory", "params", "params_"},
+    "src/core/filter/filter_memory.cpp": {"FilterMemory::FilterMemory", "buildPlaces"},
+    # To be split into collaborators, each taking its groups (particle_filter.h's own change); until
+    # then it builds the two models from the whole Params (their overloads for it, which the tests use too).
+    "include/amcr/filter/particle_filter.h": {"ParticleFilter", "params", "params_"},
+    "src/core/filter/particle_filter.cpp": {"ParticleFilter::ParticleFilter"},
+    "include/amcr/filter/observation_model.h": {"ObservationModel"},
+    "include/amcr/filter/motion_model.h": {"MotionModel"},
+    # A rebuild hands the Params to the caller's directory reader (the nodelet's takes the whole).
+    "include/amcr/memory/memory_edits.h": {"DirectoryReader", "rebuild"},
+    "src/core/memory/memory_edits.cpp": {"MemoryEdits::rebuild"},
+}
+PARAMS_TYPE = re.compile(r"\bParams\b")
+
+
+def without_comments(text):
+    text = re.sub(r"/\*.*?\*/", lambda m: re.sub(r"[^\n]", " ", m.group(0)), text, flags=re.S)
+    return re.sub(r"//[^\n]*", "", text)
+
+
+def whole_params_users(text):
+    """The names in C++ `text` that take or keep a whole Params: the function (or std::function alias)
+    whose parameter list holds it, else the variable, member or function it declares."""
+    text = without_comments(text)
+    names = set()
+    for match in PARAMS_TYPE.finditer(text):
+        after = text[match.end():]
+        if re.match(r"\s*(::|:|\{)", after):
+            continue  # Params' own members, its definition
+        depth, i = 0, match.start() - 1
+        while i >= 0 and text[i] not in ";{}":
+            depth += {")": 1, "(": -1}.get(text[i], 0)
+            if depth < 0:
+                break
+            i -= 1
+        if i >= 0 and text[i] == "(":
+            start = max(text.rfind(c, 0, i) for c in ";{}") + 1
+            alias = re.match(r"\s*using\s+(\w+)\s*=", text[start:i])
+            function = re.search(r"([\w:~]+)\s*$", text[:i])
+            names.add(alias.group(1) if alias else function.group(1) if function else "(lambda)")
+        else:
+            declared = re.match(r"\s*(?:const\s*)?[&*]?\s*([\w:]+)", after)
+            if declared:
+                names.add(declared.group(1))
+    return names
+
+
+class WholeParams(unittest.TestCase):
+    maxDiff = None
+
+    def test_only_the_listed_functions_take_the_whole_params(self):
+        found = {}
+        for path in files_under(PUBLIC, (".h",)) + files_under(CORE, (".h", ".cpp")):
+            with open(path) as f:
+                names = whole_params_users(f.read())
+            if names and WHOLE_PARAMS.get(short(path)) != "*":
+                found[short(path)] = names
+        extra = ["%s: %s" % (path, ", ".join(sorted(names - set(WHOLE_PARAMS.get(path, ())))))
+                 for path, names in sorted(found.items()) if names - set(WHOLE_PARAMS.get(path, ()))]
+        self.assertEqual(extra, [], "take the whole Params where they read one group or two (pass the groups):\n" +
+                         "\n".join(extra))
+        stale = ["%s: %s" % (path, ", ".join(sorted(set(names) - found.get(path, set()))))
+                 for path, names in sorted(WHOLE_PARAMS.items())
+                 if names != "*" and set(names) - found.get(path, set())]
+        self.assertEqual(stale, [], "WHOLE_PARAMS names what no longer takes the whole Params: drop it\n" +
+                         "\n".join(stale))
+
+    def test_the_search_sees_parameters_members_and_aliases(self):
+        text = ("// Params in a comment\nvoid f(int a, const Params& p);\nstruct S\n{\n  Params params_;\n"
+                "  const Params& params() const;\n  using Reader = std::function<void(const Params&)>;\n"
+                "  void g(const ScanParams& s, cv::flann::IndexParams i);\n};\nvoid Params::validate() const;\n")
+        self.assertEqual(whole_params_users(text), {"f", "params_", "params", "Reader"})
+
+
+# Every parameter is declared once: a field of one group of params.h (Params inherits them all), one
+# entry of the table by name (params.cpp: numericParameters() or wordParameters()), one key of
+# config/amcr.yaml and one entry of cfg/AMCR.cfg (but NOT_RECONFIGURABLE).
+NOT_RECONFIGURABLE = {"table_cache_dir"}  # read when the memory is loaded (cfg/AMCR.cfg says so)
+STRUCT = re.compile(r"^struct\s+(\w+)\s*(?::\s*([\w\s,]+?))?\s*\{(.*?)^\};", re.M | re.S)
+FIELD = re.compile(r"^\s+[\w:<>,\s]+?\b(\w+)\s*(?:=[^;]*)?;", re.M)
+
+
+def parameter_groups():
+    """{group: [its fields]} of the structs Params inherits (each base's own fields), and Params' own."""
+    with open(os.path.join(PUBLIC, "base", "params.h")) as f:
+        text = without_comments(f.read())
+    structs = {m.group(1): ([b.strip() for b in (m.group(2) or "").split(",") if b.strip()],
+                            [n for n in FIELD.findall(m.group(3)) if n != "validate"])
+               for m in STRUCT.finditer(text)}
+    groups, pending = {}, list(structs.get("Params", ([], []))[0])
+    while pending:
+        name = pending.pop(0)
+        bases, fields = structs[name]
+        groups[name] = fields
+        pending += bases
+    return groups, structs.get("Params", ([], []))[1]
+
+
+def names_in(path, pattern, functions=()):
+    """The names `pattern` finds in the file at `path`, or in the bodies of its `functions` only."""
+    with open(os.path.join(PACKAGE, path)) as f:
+        text = f.read()
+    if functions:
+        text = without_comments(text)
+        text = "".join(re.search(r"\b%s\(\)\s*\{.*?^\}" % name, text, re.M | re.S).group(0) for name in functions)
+    return re.findall(pattern, text, re.M)
+
+
+class ParameterDeclarations(unittest.TestCase):
+    maxDiff = None
+
+    def test_every_field_is_in_one_group_and_declared_once_everywhere(self):
+        groups, own = parameter_groups()
+        self.assertGreater(len(groups), 5, "params.h: no groups found (struct Params : ParticleCounts, ...)")
+        self.assertEqual(own, [], "Params declares fields of its own: put them in a group")
+        fields = collections.Counter(n for names in groups.values() for n in names)
+        self.assertEqual([n for n, k in fields.items() if k > 1], [], "fields in two groups")
+        table = collections.Counter(names_in("src/core/base/params.cpp", r'(?:AMCR_(?:INT|DOUBLE)\(|choice\("|\{\{")(\w+)',
+                                             ("numericParameters", "wordParameters")))
+        yaml = collections.Counter(names_in("config/amcr.yaml", r"^(\w+):"))
+        cfg = collections.Counter(names_in("cfg/AMCR.cfg", r'(?:\badd\(\s*\w+,\s*|\.add\(\s*)"(\w+)"'))
+        for what, declared, expected in (("params.cpp's table", table, set(fields)),
+                                         ("config/amcr.yaml", yaml, set(fields)),
+                                         ("cfg/AMCR.cfg", cfg, set(fields) - NOT_RECONFIGURABLE)):
+            self.assertEqual(sorted(expected - set(declared)), [], "fields missing from " + what)
+            self.assertEqual(sorted(set(declared) - expected), [], "in %s but no field of a group" % what)
+            self.assertEqual([n for n, k in declared.items() if k > 1], [], "declared twice in " + what)
+
+
 class FileLength(unittest.TestCase):
     maxDiff = None
 

@@ -34,7 +34,7 @@ enum class RayCorrespondence
 // The parameters come in groups, each read by the component that owns it;
 // a component takes the group(s) it reads (a Params binds to each), and only
 // what builds everything (Recognizer, FilterMemory), the files and the
-// checks take the whole Params.
+// checks take the whole Params (test/test_core_layout.py keeps the list).
 
 /// Particle counts, and how a V-particle's M-particles are shared among the
 /// prototypes (PrototypePrior; the particle filter's seeding and resampling).
