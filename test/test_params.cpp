@@ -239,4 +239,54 @@ TEST(Params, EverySixtyFourBitSeedSetDirectlyIsValid)
   p.seed = std::numeric_limits<std::uint64_t>::max();
   EXPECT_NO_THROW(p.validate());
 }
+
+// The parameters that are not numbers go through one table: a choice takes each of its words (the
+// default's first) and reads it back, refuses another word naming its own, and a number is refused
+// naming what the parameter takes; the texts read back as they were set.
+TEST(Params, WordParametersGoThroughTheirTable)
+{
+  const amcr::Params defaults;
+  ASSERT_EQ(amcr::wordParameterTable().size(), 5u);
+  for (const amcr::WordParameterInfo& info : amcr::wordParameterTable())
+  {
+    amcr::Params p;
+    for (const std::string& word : info.words)
+    {
+      amcr::setParameter(p, info.name, word);
+      EXPECT_EQ(amcr::getWordParameter(p, info.name), word) << info.name;
+    }
+    if (!info.words.empty())
+    {
+      EXPECT_EQ(amcr::getWordParameter(defaults, info.name), info.words.front()) << info.name;
+      expectParameterError([&]() { amcr::setParameter(p, info.name, std::string("no_such_word")); },
+                           "'" + info.words.back() + "'", info.name + " = no_such_word");
+    }
+    expectParameterError([&]() { amcr::setParameter(p, info.name, 1.0); }, info.takes, info.name + " = 1");
+  }
+  amcr::Params p;
+  amcr::setParameter(p, "table_cache_dir", std::string("~/tables"));
+  amcr::setParameter(p, "prototype_priors", std::string("bat: 2.5, apple: 0"));
+  EXPECT_EQ(amcr::getWordParameter(p, "table_cache_dir"), "~/tables");
+  EXPECT_EQ(amcr::getWordParameter(p, "prototype_priors"), "apple: 0, bat: 2.5");
+  EXPECT_FALSE(amcr::sameParameters(p, defaults));
+  expectParameterError([&]() { amcr::getWordParameter(p, "sigma_w"); }, "sigma_w", "a number as a word");
+}
+
+// MemoryParams::validate, which a memory's load runs, checks its own group (its EdgeParams with it)
+// and no other.
+TEST(Params, MemoryParamsValidateTheirGroupAlone)
+{
+  amcr::Params p;
+  p.num_v_particles = -1;  // another group's
+  EXPECT_NO_THROW(static_cast<const amcr::MemoryParams&>(p).validate());
+  amcr::MemoryParams m;
+  m.prototype_size = 8;
+  expectParameterError([&]() { m.validate(); }, "prototype_size", "prototype_size = 8");
+  m = amcr::MemoryParams();
+  m.blur_sigma = -1.0;
+  expectParameterError([&]() { m.validate(); }, "blur_sigma", "blur_sigma = -1");
+  m = amcr::MemoryParams();
+  m.table_cache_dir = "relative/tables";
+  expectParameterError([&]() { m.validate(); }, "table_cache_dir", "a relative table_cache_dir");
+}
 }  // namespace
