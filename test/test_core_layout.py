@@ -234,15 +234,15 @@ WHOLE_PARAMS = {
     # pairs are built with the attention's, the extraction's, the index's, the threads and the cache's.
     "include/amcr/filter/filter_memory.h": {"FilterMemory", "params", "params_"},
     "src/core/filter/filter_memory.cpp": {"FilterMemory::FilterMemory", "buildPlaces"},
-    # To be split into collaborators, each taking its groups (particle_filter.h's own change); until
-    # then it builds the two models from the whole Params (their overloads for it, which the tests use too).
-    "include/amcr/filter/particle_filter.h": {"ParticleFilter", "params", "params_"},
+    # The filter builds its collaborators, each from the groups it reads, and shows the Params of its
+    # memory; the two models keep an overload for the whole Params, which the tests use.
+    "include/amcr/filter/particle_filter.h": {"ParticleFilter", "params"},
     "src/core/filter/particle_filter.cpp": {"ParticleFilter::ParticleFilter"},
     "include/amcr/filter/observation_model.h": {"ObservationModel"},
     "include/amcr/filter/motion_model.h": {"MotionModel"},
-    # A rebuild hands the Params to the caller's directory reader (the nodelet's takes the whole).
-    "include/amcr/memory/memory_edits.h": {"DirectoryReader", "rebuild"},
-    "src/core/memory/memory_edits.cpp": {"MemoryEdits::rebuild"},
+    # The session owns and edits the recognizer's parameters: it hands them to each rebuild whole.
+    "include/amcr/recognizer_session.h": {"RecognizerSession", "ReconfigurationFrom", "params", "params_"},
+    "src/core/recognizer_session.cpp": {"RecognizerSession::RecognizerSession", "RecognizerSession::params"},
 }
 PARAMS_TYPE = re.compile(r"\bParams\b")
 

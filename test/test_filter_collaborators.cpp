@@ -139,7 +139,7 @@ TEST(Resampler, TheKeptVParticlesComeFirstAndNoneIsCopiedMoreThanThreeTimes)
     v[i].log_evidence_sum = i == 5 ? 0.0 : -50.0;  // V-particle 5 carries nearly all the weight
   }
   held.set({heldBox(0, 10, 10, 50, 50)}, kImage, prior, 2);
-  amcr::Resampler resampler(params);
+  amcr::Resampler resampler(params, params, params, params.seed);
   const amcr::VGeneration next = resampler.drawV(v, {}, held);
   ASSERT_EQ(next.source.size(), v.size());
   EXPECT_EQ(next.source[0], 0);  // the one on the held object, carried over
@@ -155,7 +155,7 @@ TEST(Resampler, TheKeptVParticlesComeFirstAndNoneIsCopiedMoreThanThreeTimes)
     }
 
   // Same seed, same draw; reset starts the stream again.
-  amcr::Resampler again(params);
+  amcr::Resampler again(params, params, params, params.seed);
   EXPECT_EQ(again.drawV(v, {}, held).source, next.source);
   resampler.reset(params.seed);
   EXPECT_EQ(resampler.drawV(v, {}, held).source, next.source);
@@ -176,7 +176,7 @@ TEST(AttentionControl, ThePolicyMovesAVParticleThatDecidesNothing)
   params.discriminative_moves = false;
   params.competing_fits = 0;
   const amcr::FilterMemory memory(params, twoShapes());
-  amcr::AttentionControl attention(params);
+  amcr::AttentionControl attention(params, params, params);
   EXPECT_THROW(attention.setPolicy(nullptr), amcr::ParameterError);
   attention.setPolicy(std::make_unique<PolicyGoingLeft>());
   const cv::Mat image(kImage, CV_8UC1, cv::Scalar(0));
@@ -208,7 +208,7 @@ TEST(ParticleSeeder, NewParticlesStartOutsideTheHeldObjectsAndInsideTheirPrototy
   const cv::Mat scan = amcr::prepareScanImage(image, params.blur_sigma);
   const amcr::RadialScanner scanner(scan, params.edge_threshold, params.max_ray_length);
   const amcr::ObservationModel observation(params);
-  const amcr::ParticleSeeder seeder(params, observation.logInvalid());
+  const amcr::ParticleSeeder seeder(params, params, params, observation.logInvalid());
   const amcr::SeedingScene scene{memory, held, kImage};
   const std::size_t count = prior.slots().size();
   amcr::MParticleSet m;

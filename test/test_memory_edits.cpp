@@ -31,7 +31,7 @@ protected:
   /// Reads the directory as the nodelet does, counting the reads.
   amcr::MemoryEdits::DirectoryReader reader()
   {
-    return [this](const std::string& directory, const amcr::Params& params) {
+    return [this](const std::string& directory, const amcr::MemoryParams& params) {
       ++reads_;
       return amcr::PrototypeMemory::loadDirectory(directory, params);
     };

@@ -203,7 +203,7 @@ private:
   /// the lock).
   std::unique_ptr<Recognizer> restart(std::unique_ptr<Recognizer> replacement = nullptr);
   /// PrototypeMemory::loadDirectory with its skipped files and progress told to the hooks.
-  PrototypeMemory loadDirectory(const std::string& directory, const Params& params) const;
+  PrototypeMemory loadDirectory(const std::string& directory, const MemoryParams& params) const;
   /// The swaps (frame lock held); each takes what it swaps in and keeps in it what it replaced.
   std::string swapLoaded(const std::string& directory, FilterMemory& tables, double build_seconds);
   std::string swapReconfigured(const Reconfiguration& change, std::shared_ptr<const PrototypeMemory> memory,

@@ -45,7 +45,7 @@ double secondsSince(std::chrono::steady_clock::time_point start)
 }
 }  // namespace
 
-PrototypeMemory RecognizerSession::loadDirectory(const std::string& directory, const Params& params) const
+PrototypeMemory RecognizerSession::loadDirectory(const std::string& directory, const MemoryParams& params) const
 {
   return PrototypeMemory::loadDirectory(
       directory, params, [this](const std::string& w) { warn("prototypes: " + w); },
@@ -149,7 +149,7 @@ RecognizerSession::PreparedSwap RecognizerSession::prepareReconfigure(const Reco
       return prepared;  // nothing new: nothing to swap
     std::shared_ptr<const PrototypeMemory> memory = state.memory;
     if (memory && (rebuild_tables || tablesDiffer(change.params, state.params)))
-      memory = state.edits.rebuild(change.params, [this](const std::string& directory, const Params& params) {
+      memory = state.edits.rebuild(change.params, [this](const std::string& directory, const MemoryParams& params) {
         return loadDirectory(directory, params);
       });
     auto rebuilt = std::make_shared<std::unique_ptr<Recognizer>>();

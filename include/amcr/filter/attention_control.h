@@ -2,9 +2,10 @@
 // when its M-particles hold competing clusters of look-alike prototypes and
 // discriminative_moves is on, the move whose predicted scans tell them apart
 // (discriminative_attention.h); otherwise the exploration policy's move.
-// Reads discriminative_moves, competing_fits, cluster_radius,
-// discriminative_min_share, cluster_min_share, v_step, reflection_jitter
-// and discriminative_min_gain.
+// Reads AttentionParams (discriminative_moves, discriminative_min_share,
+// discriminative_min_gain), MotionParams (v_step, reflection_jitter) and of
+// ExtractionParams what makes a cluster: competing_fits, cluster_radius and
+// cluster_min_share.
 #pragma once
 
 #include <memory>
@@ -27,7 +28,7 @@ class AttentionControl
 {
 public:
   /// The policy is the paper's (ReflectAtEdgesPolicy) until setPolicy().
-  explicit AttentionControl(const Params& params);
+  AttentionControl(const AttentionParams& attention, const MotionParams& motion, const ExtractionParams& clusters);
 
   /// Replaces the exploration policy F (ParameterError when null).
   void setPolicy(std::unique_ptr<ExplorationPolicy> policy);

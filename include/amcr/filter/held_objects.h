@@ -3,7 +3,7 @@
 // starts inside one (inhibition of return) and V-resampling leaves each only
 // a few V-particles; and they are the scene's context, so a share of the new
 // M-particles is drawn in their prototypes (paper 3.6's context priors).
-// Reads held_v_particles and scene_prior_share.
+// Reads AttentionParams' held_v_particles and scene_prior_share.
 #pragma once
 
 #include <vector>
@@ -30,7 +30,7 @@ struct HeldObject
 class HeldObjects
 {
 public:
-  explicit HeldObjects(const Params& params);
+  explicit HeldObjects(const AttentionParams& attention);
 
   /// Holds `held` (replacing the last ones) in an image of `image_size`;
   /// only their prototypes whose `prior` is not 0 lean the seeding. None

@@ -5,9 +5,10 @@
 // paper) or, for a share index_share, at a place the proposal indexes find
 // for the V-particle's rays (the mixture proposal), with the importance
 // weight of the mixture; with ray_correspondence affine, a view shape.
-// Reads seed_attempts, seed_enclosure_rays, index_share,
-// proposal_correction, index_stride, index_candidates, ray_correspondence,
-// max_anisotropy and oblique_share. Keeps no state: what it draws comes from
+// Reads ResamplingParams' seed_attempts and seed_enclosure_rays,
+// ProposalParams (index_share, proposal_correction, index_stride,
+// index_candidates) and ObservationParams' view shapes (ray_correspondence,
+// max_anisotropy, oblique_share). Keeps no state: what it draws comes from
 // the V-particle slot's stream.
 #pragma once
 
@@ -42,7 +43,8 @@ class ParticleSeeder
 public:
   /// `log_invalid`: the log likelihood of an invalid ray (ObservationModel),
   /// which each ray of a new M-particle has until it is measured.
-  ParticleSeeder(const Params& params, double log_invalid);
+  ParticleSeeder(const ResamplingParams& resampling, const ProposalParams& proposals,
+                 const ObservationParams& observation, double log_invalid);
 
   /// A new V-particle (a pose on the scanner's image) and its M-particles in
   /// [begin, end) of `set`, their prototypes from the prior slots.

@@ -4,9 +4,11 @@
 // of the next generation by KLD-sampling), and the draw of the next
 // V-particles every w iterations, with the attention feedback of paper 4.3.
 // It owns the V-resampling's random stream, the leading hypotheses and the
-// M-particle set the next generation is written into. Reads kld_error,
-// kld_z, min_m_particles_per_v, injection_fraction, m_reseed_fraction,
-// v_reseed_fraction, motion_noise_translation and motion_noise_rotation.
+// M-particle set the next generation is written into. Reads
+// ParticleCounts' KLD-sampling (kld_error, kld_z, min_m_particles_per_v),
+// ResamplingParams (injection_fraction, m_reseed_fraction,
+// v_reseed_fraction) and MotionParams' noise of an injected pose
+// (motion_noise_translation, motion_noise_rotation).
 #pragma once
 
 #include <cstddef>
@@ -41,7 +43,9 @@ struct VGeneration
 class Resampler
 {
 public:
-  explicit Resampler(const Params& params);
+  /// The V-resampling's stream starts from `seed`.
+  Resampler(const ParticleCounts& counts, const ResamplingParams& resampling, const MotionParams& motion,
+            std::uint64_t seed);
 
   /// Forgets the leading hypotheses and the scratch set; the V-resampling's
   /// stream starts again from `seed`.

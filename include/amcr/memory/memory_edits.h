@@ -35,7 +35,7 @@ public:
   };
   /// Reads a prototype directory (PrototypeMemory::loadDirectory, with the
   /// caller's warnings): the same reader for a load and a rebuild.
-  using DirectoryReader = std::function<PrototypeMemory(const std::string& directory, const Params& params)>;
+  using DirectoryReader = std::function<PrototypeMemory(const std::string& directory, const MemoryParams& params)>;
 
   /// The directory the memory was loaded from; empty: none (a memory taught from scratch).
   const std::string& directory() const { return directory_; }
@@ -52,7 +52,7 @@ public:
   /// The memory of directory() (none when it is empty) read by `read` with
   /// `params`, the labels removed, the prototypes taught added (in the order
   /// taught). Throws MemoryError when no prototype is left, or from `read`.
-  std::shared_ptr<const PrototypeMemory> rebuild(const Params& params, const DirectoryReader& read) const;
+  std::shared_ptr<const PrototypeMemory> rebuild(const MemoryParams& params, const DirectoryReader& read) const;
 
   /// Why teaching `label` into `memory` (null: none loaded yet) is refused,
   /// empty when it may go ahead. With `save`, the file it is to be written to

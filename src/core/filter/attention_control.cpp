@@ -6,14 +6,15 @@
 
 namespace amcr
 {
-AttentionControl::AttentionControl(const Params& params)
-  : policy_(std::make_unique<ReflectAtEdgesPolicy>(params.v_step, params.reflection_jitter))
-  , discriminator_(params.v_step, params.discriminative_min_gain)
-  , discriminative_moves_(params.discriminative_moves)
-  , competing_fits_(params.competing_fits > 0)
-  , cluster_radius_(static_cast<float>(params.cluster_radius))
-  , competing_min_share_(static_cast<float>(params.discriminative_min_share))
-  , converged_share_(static_cast<float>(params.cluster_min_share))
+AttentionControl::AttentionControl(const AttentionParams& attention, const MotionParams& motion,
+                                   const ExtractionParams& clusters)
+  : policy_(std::make_unique<ReflectAtEdgesPolicy>(motion.v_step, motion.reflection_jitter))
+  , discriminator_(motion.v_step, attention.discriminative_min_gain)
+  , discriminative_moves_(attention.discriminative_moves)
+  , competing_fits_(clusters.competing_fits > 0)
+  , cluster_radius_(static_cast<float>(clusters.cluster_radius))
+  , competing_min_share_(static_cast<float>(attention.discriminative_min_share))
+  , converged_share_(static_cast<float>(clusters.cluster_min_share))
 {
 }
 

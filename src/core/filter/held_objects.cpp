@@ -17,8 +17,8 @@ namespace
 constexpr int kFreePlaceDraws = 32;  // uniform draws before a free place is picked from the mask's free pixels
 }  // namespace
 
-HeldObjects::HeldObjects(const Params& params)
-  : keep_per_object_(params.held_v_particles), scene_prior_share_(params.scene_prior_share)
+HeldObjects::HeldObjects(const AttentionParams& attention)
+  : keep_per_object_(attention.held_v_particles), scene_prior_share_(attention.scene_prior_share)
 {
 }
 

@@ -23,11 +23,11 @@ ParticleFilter::ParticleFilter(const Params& params, std::shared_ptr<const Proto
 
 ParticleFilter::ParticleFilter(FilterMemory memory)
   : memory_(std::move(memory))
-  , attention_(params())
-  , observation_(params())
-  , motion_(params())
-  , seeder_(params(), observation_.logInvalid())
-  , resampler_(params())
+  , attention_(params(), params(), params())
+  , observation_(params(), params())
+  , motion_(params(), params())
+  , seeder_(params(), params(), params(), observation_.logInvalid())
+  , resampler_(params(), params(), params(), params().seed)
   , held_(params())
 {
   reset();
@@ -78,10 +78,10 @@ void ParticleFilter::swapMemory(FilterMemory& memory)
 
 void ParticleFilter::reset()
 {
-  const Params& p = params();
-  resampler_.reset(p.seed);
+  const std::uint64_t seed = params().seed;
+  resampler_.reset(seed);
   work_.clear();
-  for (Rng& stream : Rng::streams(p.seed, static_cast<std::size_t>(p.num_v_particles)))
+  for (Rng& stream : Rng::streams(seed, static_cast<std::size_t>(params().num_v_particles)))
     work_.emplace_back(stream);
   v_.clear();
   m_count_.clear();

@@ -18,16 +18,17 @@ constexpr float kMinSeedRayLength = 4.f;  // px: shorter rays at a seed place me
 double candidateSpread(int stride) { return std::max(0.5, 0.5 * stride); }
 }  // namespace
 
-ParticleSeeder::ParticleSeeder(const Params& params, double log_invalid)
-  : seed_attempts_(params.seed_attempts)
-  , seed_enclosure_rays_(params.seed_enclosure_rays)
-  , index_share_(params.index_share)
-  , proposal_correction_(params.proposal_correction)
-  , index_stride_(params.index_stride)
-  , index_candidates_(params.index_candidates)
-  , ray_correspondence_(params.ray_correspondence)
-  , max_anisotropy_(params.max_anisotropy)
-  , oblique_share_(params.oblique_share)
+ParticleSeeder::ParticleSeeder(const ResamplingParams& resampling, const ProposalParams& proposals,
+                               const ObservationParams& observation, double log_invalid)
+  : seed_attempts_(resampling.seed_attempts)
+  , seed_enclosure_rays_(resampling.seed_enclosure_rays)
+  , index_share_(proposals.index_share)
+  , proposal_correction_(proposals.proposal_correction)
+  , index_stride_(proposals.index_stride)
+  , index_candidates_(proposals.index_candidates)
+  , ray_correspondence_(observation.ray_correspondence)
+  , max_anisotropy_(observation.max_anisotropy)
+  , oblique_share_(observation.oblique_share)
   , log_invalid_(log_invalid)
 {
 }

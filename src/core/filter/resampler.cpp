@@ -21,16 +21,17 @@ constexpr float kKldCell = 8.f;                                        // table 
 constexpr float kKldAngle = static_cast<float>(20.0 * M_PI / 180.0);  // rad
 }  // namespace
 
-Resampler::Resampler(const Params& params)
-  : kld_error_(params.kld_error)
-  , kld_z_(params.kld_z)
-  , min_m_particles_(params.min_m_particles_per_v)
-  , injection_fraction_(params.injection_fraction)
-  , m_reseed_fraction_(params.m_reseed_fraction)
-  , v_reseed_fraction_(params.v_reseed_fraction)
-  , noise_translation_(params.motion_noise_translation)
-  , noise_rotation_(params.motion_noise_rotation)
-  , rng_(params.seed)
+Resampler::Resampler(const ParticleCounts& counts, const ResamplingParams& resampling, const MotionParams& motion,
+                     std::uint64_t seed)
+  : kld_error_(counts.kld_error)
+  , kld_z_(counts.kld_z)
+  , min_m_particles_(counts.min_m_particles_per_v)
+  , injection_fraction_(resampling.injection_fraction)
+  , m_reseed_fraction_(resampling.m_reseed_fraction)
+  , v_reseed_fraction_(resampling.v_reseed_fraction)
+  , noise_translation_(motion.motion_noise_translation)
+  , noise_rotation_(motion.motion_noise_rotation)
+  , rng_(seed)
 {
 }
 

@@ -47,7 +47,7 @@ void MemoryEdits::addRemoval(const std::string& label)
   removed_.push_back(label);
 }
 
-std::shared_ptr<const PrototypeMemory> MemoryEdits::rebuild(const Params& params, const DirectoryReader& read) const
+std::shared_ptr<const PrototypeMemory> MemoryEdits::rebuild(const MemoryParams& params, const DirectoryReader& read) const
 {
   auto memory = std::make_shared<PrototypeMemory>();
   if (!directory_.empty())
