@@ -2,7 +2,7 @@
 """The core library's folders form layers: a file of include/amcr/<folder>/ or src/core/<folder>/
 includes headers of its own folder and of the folders below it, never above; no header includes
 itself through others, and no two units (x.h with x.cpp) include each other; no class holds more
-than MAX_MEMBERS data members; no file of src/
+than MAX_MEMBERS data members; RecognizerRos (the nodelet's glue) stays under ROS_GLUE_LINES; no file of src/
 or include/ is longer than MAX_LINES; every public header is in a folder or is one of the library's
 face (FACE, at the top of include/amcr/).
 
@@ -373,6 +373,30 @@ class FileLength(unittest.TestCase):
                 if lines > MAX_LINES:
                     long_files.append("%s: %d lines" % (short(path), lines))
         self.assertEqual(long_files, [], "over %d lines:\n%s" % (MAX_LINES, "\n".join(long_files)))
+
+
+# The nodelet's RecognizerRos is glue over amcr::RecognizerSession (recognizer_session.h): services,
+# messages, diagnostics and dynamic_reconfigure, no recognition logic. Its files together stay under
+# ROS_GLUE_LINES, and none of them reaches into the filter.
+ROS_GLUE = ("src/ros/recognizer_ros.h", "src/ros/recognizer_ros.cpp", "src/ros/recognizer_services.cpp")
+ROS_GLUE_LINES = 500
+
+
+class RosGlue(unittest.TestCase):
+    def test_recognizer_ros_is_under_its_line_budget(self):
+        counts = {}
+        for path in ROS_GLUE:
+            with open(os.path.join(PACKAGE, path)) as f:
+                counts[path] = sum(1 for _ in f)
+        self.assertLess(sum(counts.values()), ROS_GLUE_LINES,
+                        "RecognizerRos's files: %s; move the logic into the core's session" % counts)
+
+    def test_recognizer_ros_does_not_reach_into_the_filter(self):
+        reaching = []
+        for path in ROS_GLUE:
+            with open(os.path.join(PACKAGE, path)) as f:
+                reaching += ["%s: %s" % (path, line.strip()) for line in f if line.startswith('#include "amcr/filter/')]
+        self.assertEqual(reaching, [], "\n".join(reaching))
 
 
 if __name__ == "__main__":
