@@ -25,7 +25,7 @@ using amcr_test::ShapeId;
 
 constexpr int kStride = 3;       // table px: half the default index_stride, as the filter builds it
 constexpr int kSearch = 64;      // the default index_candidates
-constexpr int kKeep = 8;         // ParticleFilter::kProfileCandidates
+constexpr int kKeep = 8;         // ParticleSeeder::kProfileCandidates
 constexpr double kRadius = 2.0 * kStride;  // table px from the true place that still counts as it
 
 using amcr_test::binDistance;

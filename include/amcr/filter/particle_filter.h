@@ -157,14 +157,6 @@ public:
   double meanMParticles() const;
   /// The proposal index, or null when index_share is 0.
   const ProposalIndex* proposalIndex() const { return memory_.index().get(); }
-  /// The places V-particle `v` is proposed seen frontally, best first
-  /// (ParticleSeeder::frontalCandidates).
-  std::vector<ProposalCandidate> frontalCandidates(const VParticle& v, const RadialScanner& scanner, int count) const
-  {
-    return seeder_.frontalCandidates(v, scanner, memory_, count);
-  }
-  /// Frontal candidates kept from the radial-profile index.
-  static constexpr int kProfileCandidates = ParticleSeeder::kProfileCandidates;
   /// What the last memory's index build left out (a line per prototype).
   const std::vector<std::string>& indexWarnings() const { return memory_.warnings(); }
   /// The memory's look-alike pairs (discriminative_places.h), with their

@@ -60,16 +60,16 @@ public:
   /// rays read under one drawn view shape.
   void findCandidates(const VParticle& v, const RadialScanner& scanner, const FilterMemory& memory,
                       VWorkspace& work) const;
+  /// Frontal candidates kept from the radial-profile index.
+  static constexpr int kProfileCandidates = 8;
+
+private:
   /// The places V-particle `v` is proposed seen frontally, best first: from
   /// the radial-profile index when it is on and the V-particle's profile
   /// can be read (the best aligned kProfileCandidates), else from the 8-ray
   /// index (`count` of them); empty without an index.
   std::vector<ProposalCandidate> frontalCandidates(const VParticle& v, const RadialScanner& scanner,
                                                    const FilterMemory& memory, int count) const;
-  /// Frontal candidates kept from the radial-profile index.
-  static constexpr int kProfileCandidates = 8;
-
-private:
   void seedV(VParticle& v, const RadialScanner& scanner, const SeedingScene& scene, Rng& rng) const;
   void seedUniform(MParticleSet& set, std::size_t index, int prototype, const VParticle& v,
                    const PrototypeMemory& memory, Rng& rng) const;

@@ -130,8 +130,8 @@ void ParticleFilter::update(int v_index, const RadialScanner& scanner)
 
   measure(v_index, scanner);
   accumulateEvidence(v_index);
-  m_count_[v_index] = resampler_.resampleM(v, m_, r.begin, static_cast<int>(mRange(v_index).size()),
-                                           mParticlesPerV(), seeder_, seedingScene(), work_[v_index]);
+  m_count_[v_index] = resampler_.resampleM(v, m_, r.begin, static_cast<int>(r.size()), mParticlesPerV(), seeder_,
+                                           seedingScene(), work_[v_index]);
 }
 
 // The V-particles are independent within an iteration (paper 3.6): each
