@@ -242,7 +242,7 @@ WHOLE_PARAMS = {
     "include/amcr/filter/motion_model.h": {"MotionModel"},
     # The session owns and edits the recognizer's parameters: it hands them to each rebuild whole.
     "include/amcr/recognizer_session.h": {"RecognizerSession", "ReconfigurationFrom", "params", "params_"},
-    "src/core/recognizer_session.cpp": {"RecognizerSession::RecognizerSession", "RecognizerSession::params"},
+    "src/core/recognizer_session.cpp": {"RecognizerSession::RecognizerSession", "RecognizerSession::params", "params_"},
 }
 PARAMS_TYPE = re.compile(r"\bParams\b")
 
@@ -273,7 +273,7 @@ def whole_params_users(text):
             function = re.search(r"([\w:~]+)\s*$", text[:i])
             names.add(alias.group(1) if alias else function.group(1) if function else "(lambda)")
         else:
-            declared = re.match(r"\s*(?:const\s*)?[&*]?\s*([\w:]+)", after)
+            declared = re.match(r"\s*(?:const\s*)?[&*]?\s*>?\s*([\w:]+)", after)  # also a shared_ptr<const Params>
             if declared:
                 names.add(declared.group(1))
     return names
@@ -302,8 +302,9 @@ class WholeParams(unittest.TestCase):
     def test_the_search_sees_parameters_members_and_aliases(self):
         text = ("// Params in a comment\nvoid f(int a, const Params& p);\nstruct S\n{\n  Params params_;\n"
                 "  const Params& params() const;\n  using Reader = std::function<void(const Params&)>;\n"
-                "  void g(const ScanParams& s, cv::flann::IndexParams i);\n};\nvoid Params::validate() const;\n")
-        self.assertEqual(whole_params_users(text), {"f", "params_", "params", "Reader"})
+                "  void g(const ScanParams& s, cv::flann::IndexParams i);\n  std::shared_ptr<const Params> kept_;\n};\n"
+                "void Params::validate() const;\n")
+        self.assertEqual(whole_params_users(text), {"f", "params_", "params", "Reader", "kept_"})
 
 
 # Every parameter is declared once: a field of one group of params.h (Params inherits them all), one
@@ -359,6 +360,7 @@ class ParameterDeclarations(unittest.TestCase):
             self.assertEqual(sorted(expected - set(declared)), [], "fields missing from " + what)
             self.assertEqual(sorted(set(declared) - expected), [], "in %s but no field of a group" % what)
             self.assertEqual([n for n, k in declared.items() if k > 1], [], "declared twice in " + what)
+
 
 
 class FileLength(unittest.TestCase):

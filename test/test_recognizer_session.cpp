@@ -148,7 +148,8 @@ TEST_F(RecognizerSessionTest, ImagesAreSkippedUntilALoadSucceeds)
   EXPECT_TRUE(first.restarted);
   EXPECT_EQ(first.table_version, 1u);
   EXPECT_EQ(first.memory, news_.tables[0].memory);
-  EXPECT_EQ(first.params.seed, 1u);
+  ASSERT_NE(first.params, nullptr);
+  EXPECT_EQ(first.params->seed, 1u);
   const amcr::RecognizedFrame second = step(*session);
   EXPECT_EQ(second.result.iteration, 2);
   EXPECT_FALSE(second.restarted);

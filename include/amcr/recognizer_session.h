@@ -88,7 +88,8 @@ struct RecognizedFrame
   RecognitionResult result;                       ///< the core's result: objects best score first, its time_ms
   std::shared_ptr<const PrototypeMemory> memory;  ///< the memory the objects refer to
   std::uint32_t table_version = 0;                ///< the label table's version the objects refer to
-  Params params;                                  ///< the parameters the image was recognized with
+  /// The parameters the image was recognized with (shared: an image copies a pointer, not the Params).
+  std::shared_ptr<const Params> params;
   bool restarted = false;        ///< the first image since the filter (re)started
   bool input_restart = false;    ///< restarted first, as FrameInput::restart_unless_fresh asked
   cv::Mat overlay;               ///< bgr8, only when asked for
@@ -229,7 +230,7 @@ private:
   std::mutex rebuild_mutex_;
 
   mutable std::mutex frame_mutex_;  // everything below
-  Params params_;
+  std::shared_ptr<const Params> params_;  // replaced whole by a reconfiguration, never null
   std::shared_ptr<const PrototypeMemory> memory_;
   std::unique_ptr<Recognizer> recognizer_;  // null while no memory is loaded
   bool fresh_ = true;                       // no image recognized since restart()

@@ -12,7 +12,7 @@
 namespace amcr
 {
 RecognizerSession::RecognizerSession(Params params, SessionHooks hooks)
-  : hooks_(std::move(hooks)), params_(std::move(params))
+  : hooks_(std::move(hooks)), params_(std::make_shared<const Params>(std::move(params)))
 {
 }
 
@@ -105,7 +105,7 @@ std::unique_ptr<Recognizer> RecognizerSession::restart(std::unique_ptr<Recognize
 Params RecognizerSession::params() const
 {
   std::lock_guard<std::mutex> lock(frame_mutex_);
-  return params_;
+  return *params_;
 }
 
 LabelTable RecognizerSession::labelTable() const
@@ -123,7 +123,7 @@ std::uint32_t RecognizerSession::tableVersion() const
 RecognizerSession::EditState RecognizerSession::editState() const
 {
   std::lock_guard<std::mutex> lock(frame_mutex_);
-  return {generation_, params_, memory_, edits_, last_image_};
+  return {generation_, *params_, memory_, edits_, last_image_};
 }
 
 std::string RecognizerSession::commit(PreparedSwap& prepared)

@@ -172,7 +172,7 @@ std::string RecognizerSession::swapReconfigured(const Reconfiguration& change,
   const bool tables_rebuilt = memory != memory_;
   // A prototype taught and saved now comes from the directory, in its sorted place: a new table.
   const bool table_changed = tables_rebuilt && !sameLabelTable(*memory, *memory_);
-  params_ = change.params;
+  params_ = std::make_shared<const Params>(change.params);
   memory_ = std::move(memory);
   rebuilt = restart(std::move(rebuilt));  // null only while no memory is loaded: then there is no filter either
   if (table_changed)

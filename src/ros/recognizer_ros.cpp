@@ -235,12 +235,12 @@ bool RecognizerRos::process(const sensor_msgs::ImageConstPtr& msg, bool draw_ove
     frame.message.prototype_table_version = out.table_version;
     RecognizerStats::FilterState state;  // by name: positional braces once swapped the budget and the M-particle mean
     state.converged_v_particles = out.result.converged_v_particles;
-    state.num_v_particles = out.params.num_v_particles;
+    state.num_v_particles = out.params->num_v_particles;
     state.flow_failures = out.result.flow_failures;
     state.mean_m_particles = out.result.mean_m_particles;
-    state.budget_ms = out.params.frame_budget_ms;
+    state.budget_ms = out.params->frame_budget_ms;
     state.objects_over_limit = out.result.objects_over_limit;
-    state.max_objects = out.params.max_objects;
+    state.max_objects = out.params->max_objects;
     stats_.processed(frame.message, state);
     if (!out.overlay.empty())
       stats_.overlayDrawn();
