@@ -361,6 +361,13 @@ class ParameterDeclarations(unittest.TestCase):
             self.assertEqual(sorted(set(declared) - expected), [], "in %s but no field of a group" % what)
             self.assertEqual([n for n, k in declared.items() if k > 1], [], "declared twice in " + what)
 
+    def test_the_parameters_that_build_the_tables_are_the_memory_groups(self):
+        # What tablesDiffer compares (buildsTables in params.cpp) is what MemoryParams and its EdgeParams
+        # hold, but where the cache lies: a field added to either group and not marked would never rebuild
+        # the tables when it changes.
+        groups, _ = parameter_groups()
+        marked = set(names_in("src/core/base/params.cpp", r"buildsTables\(AMCR_(?:INT|DOUBLE)\((\w+)"))
+        self.assertEqual(sorted(marked), sorted((set(groups["MemoryParams"]) | set(groups["EdgeParams"])) - {"table_cache_dir"}))
 
 
 class FileLength(unittest.TestCase):
