@@ -122,6 +122,16 @@ const std::vector<NumericParameter>& numericParameters()
 #undef AMCR_DOUBLE
 #undef AMCR_INT
 
+/// The descriptions of a table's entries, in its order.
+template <class Entry>
+std::vector<decltype(Entry::info)> infosOf(const std::vector<Entry>& table)
+{
+  std::vector<decltype(Entry::info)> infos;
+  for (const Entry& p : table)
+    infos.push_back(p.info);
+  return infos;
+}
+
 /// The entry of `table` named `name`, or nullptr.
 template <class Entry>
 const Entry* findIn(const std::vector<Entry>& table, const std::string& name)
@@ -307,12 +317,7 @@ void MemoryParams::validate() const
 
 const std::vector<ParameterInfo>& parameterTable()
 {
-  static const std::vector<ParameterInfo> table = [] {
-    std::vector<ParameterInfo> infos;
-    for (const auto& p : numericParameters())
-      infos.push_back(p.info);
-    return infos;
-  }();
+  static const std::vector<ParameterInfo> table = infosOf(numericParameters());
   return table;
 }
 
@@ -418,12 +423,7 @@ std::string getWordParameter(const Params& params, const std::string& name)
 
 const std::vector<WordParameterInfo>& wordParameterTable()
 {
-  static const std::vector<WordParameterInfo> table = [] {
-    std::vector<WordParameterInfo> infos;
-    for (const auto& p : wordParameters())
-      infos.push_back(p.info);
-    return infos;
-  }();
+  static const std::vector<WordParameterInfo> table = infosOf(wordParameters());
   return table;
 }
 
