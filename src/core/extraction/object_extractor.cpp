@@ -140,8 +140,8 @@ Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, co
   const std::vector<FitStart> starts = fitStarts(plain, tracks);
   // The generic rivals of the prototypes fitted in this frame, once each.
   const RivalTable rivals = rivalTable(plain, starts);
-  const ExtractionInput in{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory,
-                           max_affine_scale, num_threads, &rivals};
+  ExtractionInput in = plain;
+  in.rivals = &rivals;
   std::vector<Candidate> candidates = fitCandidates(in, starts);
   verifyRivals(in, candidates);
   if (in.params.competing_fits > 0)
