@@ -209,7 +209,10 @@ private:
   std::string swapLoaded(const std::string& directory, FilterMemory& tables, double build_seconds);
   std::string swapReconfigured(const Reconfiguration& change, std::shared_ptr<const PrototypeMemory> memory,
                                std::unique_ptr<Recognizer>& rebuilt);
-  /// An edited memory made ready as `tables`: extended (the filter goes on) or not (it restarts).
+  /// A memory made ready as `tables` takes the place of the one in use: extended (the filter goes on) or
+  /// not (it restarts; a first memory gets its recognizer). The label table's news is the caller's.
+  void installMemory(FilterMemory& tables, bool extended);
+  /// An edited memory made ready as `tables` (installMemory), then the news of the label table.
   void swapEditedMemory(FilterMemory& tables, bool extended);
   /// teach() and remove() within the rebuild lock: the reason of a refusal, empty on success.
   std::string teachShape(const std::string& label, const std::vector<cv::Point2f>& region, bool save, Taught& answer);

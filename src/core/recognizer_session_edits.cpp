@@ -145,6 +145,12 @@ std::string RecognizerSession::removeLabel(const std::string& label, Removed& an
 
 void RecognizerSession::swapEditedMemory(FilterMemory& tables, bool extended)
 {
+  installMemory(tables, extended);
+  tableChanged();
+}
+
+void RecognizerSession::installMemory(FilterMemory& tables, bool extended)
+{
   std::shared_ptr<const PrototypeMemory> memory = tables.memory();
   if (!recognizer_)
     restart(std::make_unique<Recognizer>(std::move(tables)));  // the first prototype
@@ -156,6 +162,5 @@ void RecognizerSession::swapEditedMemory(FilterMemory& tables, bool extended)
     restart();
   }
   memory_ = std::move(memory);
-  tableChanged();
 }
 }  // namespace amcr

@@ -98,14 +98,7 @@ std::string RecognizerSession::swapLoaded(const std::string& directory, FilterMe
 {
   const std::shared_ptr<const PrototypeMemory> memory = tables.memory();
   const char* meanwhile = memory_ ? ", images recognized meanwhile with the previous memory" : "";
-  if (recognizer_)
-  {
-    tables = recognizer_->setMemory(std::move(tables));  // the same recognizer: track ids go on counting
-    restart();
-  }
-  else
-    restart(std::make_unique<Recognizer>(std::move(tables)));
-  memory_ = memory;
+  installMemory(tables, false);  // the same recognizer when there is one: track ids go on counting
   edits_.loaded(directory);
   indexWarnings();
   const TableCacheCounts& counts = memory->cacheCounts();
