@@ -175,12 +175,20 @@ cv::Mat renderBackground(const Scene& scene)
     return true;
   };
 
+  // One draw per statement: the order in which a call's arguments are evaluated is unspecified
+  // (GCC's and clang's differ), and a scene must be the same whatever compiled it. The draws come
+  // in the order GCC evaluated them, the last argument first: the scenes the tests were measured on.
+  const auto place = [&]() {
+    const double y = u01(gen) * scene.size.height;
+    return cv::Point2d(u01(gen) * scene.size.width, y);
+  };
+
   // Distractor shapes: random polygons, ellipses and boxes, then silhouettes.
   for (int i = 0; i < c.random_shapes; ++i)
   {
     for (int attempt = 0; attempt < 200; ++attempt)
     {
-      const cv::Point2d centre(u01(gen) * scene.size.width, u01(gen) * scene.size.height);
+      const cv::Point2d centre = place();
       const double radius = 18.0 + 37.0 * u01(gen);
       const double grey = 20.0 + 110.0 * u01(gen);
       const std::vector<cv::Point2d> poly = randomShape(gen, centre, radius);
@@ -194,10 +202,11 @@ cv::Mat renderBackground(const Scene& scene)
   {
     for (int attempt = 0; attempt < 400; ++attempt)
     {
-      const cv::Point2d centre(u01(gen) * scene.size.width, u01(gen) * scene.size.height);
+      const cv::Point2d centre = place();
       const double scale = 0.4 + 0.35 * u01(gen);
-      const amcr::Affine a = makeAffine(prototypeCentre(), centre, u01(gen) * 2.0 * M_PI, scale,
-                                        scale * (0.8 + 0.4 * u01(gen)), 0.4 * (u01(gen) - 0.5));
+      const double shear = 0.4 * (u01(gen) - 0.5);
+      const double scale_y = scale * (0.8 + 0.4 * u01(gen));
+      const amcr::Affine a = makeAffine(prototypeCentre(), centre, u01(gen) * 2.0 * M_PI, scale, scale_y, shear);
       const double grey = 20.0 + 90.0 * u01(gen);
       const std::vector<cv::Point2d> poly = transformPoints(a, shapePolygon(id));
       if (!free_place(poly))
@@ -210,8 +219,10 @@ cv::Mat renderBackground(const Scene& scene)
   // Lines anywhere; the objects are drawn over them.
   for (int i = 0; i < c.lines; ++i)
   {
-    const cv::Point p0(static_cast<int>(u01(gen) * scene.size.width), static_cast<int>(u01(gen) * scene.size.height));
-    const cv::Point p1(static_cast<int>(u01(gen) * scene.size.width), static_cast<int>(u01(gen) * scene.size.height));
+    const cv::Point2d from = place();
+    const cv::Point2d to = place();
+    const cv::Point p0(static_cast<int>(from.x), static_cast<int>(from.y));  // truncated to whole px
+    const cv::Point p1(static_cast<int>(to.x), static_cast<int>(to.y));
     const int thickness = 1 + static_cast<int>(u01(gen) * 3.0);
     const double grey = 20.0 + 110.0 * u01(gen);
     cv::line(image, p0, p1, cv::Scalar(grey), thickness, cv::LINE_AA);

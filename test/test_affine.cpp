@@ -33,7 +33,10 @@ Affine randomAffine(std::mt19937_64& gen)
   const cv::Matx22d r1(std::cos(a), -std::sin(a), std::sin(a), std::cos(a));
   const cv::Matx22d r2(std::cos(b), -std::sin(b), std::sin(b), std::cos(b));
   const cv::Matx22d l = r1 * cv::Matx22d(s1, 0, 0, flip * s2) * r2;
-  return Affine(l(0, 0), l(0, 1), shift(gen), l(1, 0), l(1, 1), shift(gen));
+  // One draw per statement (a call's arguments come in no set order), the last argument's first.
+  const double ty = shift(gen);
+  const double tx = shift(gen);
+  return Affine(l(0, 0), l(0, 1), tx, l(1, 0), l(1, 1), ty);
 }
 
 // Three random points in a 640x480 image forming a non-degenerate triangle:
@@ -306,7 +309,9 @@ TEST(AffineHelpers, FloatScaleCheckRefusesMirrorsAndScalesOutOfBounds)
     const bool flip = coin(gen) < 0.3;
     const float max_scale = trial % 2 == 0 ? 8.f : 1.5f;
     float a[6];
-    floatAffine(angle(gen), angle(gen), s1, s2, flip, a);
+    const double second = angle(gen);  // one draw per statement, the last argument's first
+    const double first = angle(gen);
+    floatAffine(first, second, s1, s2, flip, a);
     const double largest = std::max(s1, s2), smallest = std::min(s1, s2);
     const bool expected = !flip && largest <= max_scale && smallest >= 1.0 / max_scale;
     const double margin = std::min(std::abs(largest / max_scale - 1), std::abs(smallest * max_scale - 1));
@@ -336,7 +341,12 @@ TEST(AffineHelpers, FloatInverseMatchesTheDoubleInverse)
   for (int trial = 0; trial < 2000; ++trial)
   {
     float a[6], inverse[6];
-    floatAffine(angle(gen), angle(gen), std::exp(log_scale(gen)), std::exp(log_scale(gen)), coin(gen) < 0.3, a);
+    const bool flip = coin(gen) < 0.3;  // one draw per statement, the last argument's first
+    const double s2 = std::exp(log_scale(gen));
+    const double s1 = std::exp(log_scale(gen));
+    const double second = angle(gen);
+    const double first = angle(gen);
+    floatAffine(first, second, s1, s2, flip, a);
     Affine exact_inverse;
     ASSERT_TRUE(amcr::invertAffine(Affine(a[0], a[1], a[2], a[3], a[4], a[5]), exact_inverse));
     ASSERT_TRUE(amcr::invertAffine(a, inverse));
@@ -367,7 +377,8 @@ TEST(FitAffine, RecoversRandomAffinesFromManyPoints)
     std::vector<cv::Point2d> from, to;
     for (int i = 0; i < 3 + trial % 20; ++i)
     {
-      from.emplace_back(x(gen), y(gen));
+      const double from_y = y(gen);  // one draw per statement: a call's arguments come in no set order
+      from.emplace_back(x(gen), from_y);
       to.push_back(amcr::applyAffine(truth, from.back()));
     }
     Affine fitted;

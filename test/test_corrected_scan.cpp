@@ -110,7 +110,8 @@ std::vector<cv::Point> interiorTablePixels(const ViewedShape& s, double margin, 
   std::vector<cv::Point> out;
   while (static_cast<int>(out.size()) < count)
   {
-    const cv::Point at(x(rng), y(rng));
+    const int at_y = y(rng);  // one draw per statement: a call's arguments come in no set order
+    const cv::Point at(x(rng), at_y);
     const cv::Point2d original = amcr::applyAffine(p.tableToOriginal(), cv::Point2d(at.x, at.y));
     if (cv::pointPolygonTest(contour, cv::Point2f(original), true) >= margin)
       out.push_back(at);

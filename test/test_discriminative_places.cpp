@@ -45,7 +45,7 @@ protected:
     return amcr::DiscriminativePlaces::build(*memory, observation, amcr::DiscriminativePlacesSettings());
   }
 
-  const amcr::Params params;
+  const amcr::Params params{};
   const std::shared_ptr<const amcr::PrototypeMemory> memory = birdsAndStar(params);
   const amcr::ObservationModel observation{params};
 };
@@ -89,8 +89,11 @@ TEST(PrototypeAlignment, RecoversATurnedShrunkCopyDespiteWrongPlaces)
     const cv::Point& p = a.interior()[rng.index(a.interior().size())];
     in_a.emplace_back(p.x, p.y);
     const bool wrong = i % 4 == 3;
-    in_b.push_back(wrong ? cv::Point2d(rng.uniform(0.0, b.width()), rng.uniform(0.0, b.height()))
-                         : amcr::applyAffine(truth, in_a.back()) + cv::Point2d(rng.gaussian(1.0), rng.gaussian(1.0)));
+    // One draw per statement (a call's arguments come in no set order), the second coordinate first.
+    const double second = wrong ? rng.uniform(0.0, b.height()) : rng.gaussian(1.0);
+    const double first = wrong ? rng.uniform(0.0, b.width()) : rng.gaussian(1.0);
+    in_b.push_back(wrong ? cv::Point2d(first, second)
+                         : amcr::applyAffine(truth, in_a.back()) + cv::Point2d(first, second));
   }
   amcr::PrototypeAlignment alignment;
   ASSERT_TRUE(amcr::alignPrototypes(a, b, in_a, in_b, 5.0, 6, 8.0, alignment));
