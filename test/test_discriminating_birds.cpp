@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "amcr/recognizer.h"
+#include "run_length.h"
 #include "scene_drawing.h"
 
 namespace
@@ -83,6 +84,8 @@ BirdRun run(bool moves, int competing_fits, std::uint64_t seed, int taught_at = 
   return r;
 }
 
+// Under the sanitizers (test/run_length.h) the first two seeds run, with
+// each seed's bounds; the comparisons of the totals are over all six.
 // Measured (6 seeds, frames from which "crested" is held): with the
 // competing fits (the default) 6, 7, 4, 3, 5, 4 (29 in all); without
 // 6, 4, 4, 5, 37, 4 (60: with seed 5 the plain bird is held for 32 frames);
@@ -97,8 +100,9 @@ TEST(DiscriminatingBirds, TheCrestDecidesSoonerWithDiscriminativeAttention)
   constexpr int kSeedsVisiting = 4;  // of the 6
   const int fits = amcr::Params().competing_fits;
   ASSERT_GT(fits, 0) << "the competing fits are on by default";
+  const std::vector<std::uint64_t> seeds = amcr_test::firstOf(kSeeds, 2);
   int with_total = 0, without_total = 0, moves_total = 0, visiting = 0, with_wrong = 0, without_wrong = 0;
-  for (std::uint64_t seed : kSeeds)
+  for (std::uint64_t seed : seeds)
   {
     const BirdRun with = run(false, fits, seed), without = run(false, 0, seed), moves = run(true, fits, seed);
     std::cout << "[ birds    ] seed " << seed << ": held from frame " << with.held_from << " with the competing fits, "
@@ -120,6 +124,8 @@ TEST(DiscriminatingBirds, TheCrestDecidesSoonerWithDiscriminativeAttention)
   }
   std::cout << "[ birds    ] total frames to a held decision: " << with_total << " with the competing fits, "
             << without_total << " without, " << moves_total << " with discriminative moves as well\n";
+  if (seeds.size() < kSeeds.size())
+    return;  // totals over two seeds say nothing: their comparisons are the plain build's
   // A third fewer frames in all (measured: over half).
   EXPECT_LE(3 * with_total, 2 * without_total);
   EXPECT_LE(3 * moves_total, 2 * without_total);
@@ -139,7 +145,7 @@ TEST(DiscriminatingBirds, ATaughtLookAlikeTakesOverTheHeldObject)
 {
   constexpr int kTaughtAt = 16;
   constexpr int kTakenOverWithin = 5;  // frames after the teaching
-  for (std::uint64_t seed : kSeeds)
+  for (std::uint64_t seed : amcr_test::firstOf(kSeeds, 2))  // 2 under the sanitizers: test/run_length.h
   {
     const BirdRun r = run(false, amcr::Params().competing_fits, seed, kTaughtAt);
     std::cout << "[ birds    ] seed " << seed << ": the plain bird reported in " << r.wrong_frames

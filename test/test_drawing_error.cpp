@@ -1,7 +1,8 @@
 // A prototype drawn a few percent off: a user who draws a printed target from
 // measurements with a ruler gets its aspect, its holes' places and sizes a few
 // percent wrong. The real target over clutter must still be found within 20
-// frames, with the prototype drawn 3% and 5% off (recognizer seeds 1-5):
+// frames, with the prototype drawn 3% and 5% off (recognizer seeds 1-5; 1-2
+// under the sanitizers, test/run_length.h):
 // the holes fitted on their own (part_shift, outline_parts.h) make up for it.
 #include <cmath>
 #include <iostream>
@@ -12,6 +13,7 @@
 
 #include "amcr/memory/prototype_memory.h"
 #include "amcr/recognizer.h"
+#include "run_length.h"
 #include "scene_drawing.h"
 
 namespace
@@ -68,16 +70,15 @@ std::vector<cv::Mat> frames(std::uint64_t seed, amcr::Affine& truth)
   return amcr_test::printedOverClutter(trueTarget(), truth, clutter, kFindWithin);
 }
 
-/// The first frame (1-based) reporting "target" with its centre near the
-/// truth's, or 0.
-int firstFound(double error, std::uint64_t seed, double part_shift)
+/// The first frame (1-based) of `sequence` reporting "target" with its
+/// centre near the truth's, or 0.
+int firstFound(const std::vector<cv::Mat>& sequence, const amcr::Affine& truth,
+               const std::shared_ptr<const amcr::PrototypeMemory>& memory, std::uint64_t seed, double part_shift)
 {
-  amcr::Affine truth;
-  const std::vector<cv::Mat> sequence = frames(600 + seed, truth);
   amcr::Params p;
   p.seed = seed;
   p.part_shift = part_shift;
-  amcr::Recognizer recognizer(p, memoryWithTargetOff(error));
+  amcr::Recognizer recognizer(p, memory);
   const cv::Point2d centre = amcr::applyAffine(truth, amcr_test::prototypeCentre());
   for (int k = 0; k < kFindWithin; ++k)
     for (const amcr::RecognizedObject& o : recognizer.step(sequence[k]).objects)
@@ -95,15 +96,23 @@ TEST(DrawingError, ATargetDrawnThreeAndFivePercentOffIsFound)
   // Measured (20 frames): 3% off found by seeds 1-5 (frames 3-8), 5% off by
   // seeds 2-5 (frames 3-8); seed 1 does not find the 5% one in 60 frames.
   // With the holes fixed to the outline (part_shift 0): 5 and 0 of 5.
-  constexpr int kMinSeeds = 4;
+  constexpr int kMaxMisses = 1;  // seeds that do not find it, of each error's
+  const int seeds = amcr_test::runLength(5, 2);
+  // One scene per seed (its clutter and noise), shared by both errors and both settings.
+  std::vector<std::vector<cv::Mat>> scenes(seeds);
+  amcr::Affine truth;
+  for (int s = 0; s < seeds; ++s)
+    scenes[s] = frames(601 + s, truth);
   int fixed_found = 0, found_total = 0;
   for (double error : {0.03, 0.05})
   {
+    const auto memory = memoryWithTargetOff(error);
     int seeds_found = 0;
-    for (std::uint64_t seed = 1; seed <= 5; ++seed)
+    for (std::uint64_t seed = 1; seed <= static_cast<std::uint64_t>(seeds); ++seed)
     {
-      const int found = firstFound(error, seed, amcr::Params().part_shift);
-      const int fixed = firstFound(error, seed, 0.0);
+      const std::vector<cv::Mat>& sequence = scenes[seed - 1];
+      const int found = firstFound(sequence, truth, memory, seed, amcr::Params().part_shift);
+      const int fixed = firstFound(sequence, truth, memory, seed, 0.0);
       seeds_found += found > 0;
       fixed_found += fixed > 0;
       std::cout << "[ drawing  ] prototype " << 100 * error << "% off, seed " << seed << ": "
@@ -112,8 +121,8 @@ TEST(DrawingError, ATargetDrawnThreeAndFivePercentOffIsFound)
                 << (fixed > 0 ? "frame " + std::to_string(fixed) : std::string("not found")) << ")" << std::endl;
     }
     found_total += seeds_found;
-    EXPECT_GE(seeds_found, kMinSeeds) << "prototype " << 100 * error << "% off: found by " << seeds_found
-                                      << " of seeds 1-5 within " << kFindWithin << " frames";
+    EXPECT_GE(seeds_found, seeds - kMaxMisses) << "prototype " << 100 * error << "% off: found by " << seeds_found
+                                               << " of seeds 1-" << seeds << " within " << kFindWithin << " frames";
   }
   EXPECT_GT(found_total, fixed_found) << "the holes fitted on their own found no more than the fixed outline: the "
                                          "scene does not test them";
