@@ -6,7 +6,7 @@
 # The workspace is $AMCR_WS, by default <repo>/.build/ws (ignored by git; .build/CATKIN_IGNORE
 # keeps catkin from looking into it), with src/amcr a symlink to the checkout.
 #
-# Functions: amcr_stage, amcr_die, amcr_install_packages, amcr_environment,
+# Functions: amcr_stage, amcr_die, amcr_install_packages, amcr_install_clang, amcr_environment,
 # amcr_make_workspace, amcr_catkin_make, amcr_source_devel, amcr_setup (all of the set-up).
 
 AMCR_REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd -P)"
@@ -30,11 +30,11 @@ AMCR_PACKAGES=(
   rviz xvfb x11-apps
 )
 
-# scripts/fuzz: clang and its libFuzzer runtime. On bookworm the runtime (libclang_rt.fuzzer) is in
-# libclang-rt-dev (libclang-rt-14-dev); on Ubuntu 20.04 it comes with clang (clang-10 ->
-# libclang-common-10-dev), where libclang-rt-dev does not exist: amcr_install_fuzz_tools adds it
-# only when apt knows it.
-AMCR_FUZZ_PACKAGES=(clang cmake)
+# scripts/test --sanitize and scripts/fuzz: clang with its sanitizer and libFuzzer runtimes. On
+# bookworm the runtimes (libclang_rt.asan, libclang_rt.fuzzer, ...) are in libclang-rt-dev
+# (libclang-rt-14-dev); on Ubuntu 20.04 they come with clang (clang-10 -> libclang-common-10-dev),
+# where libclang-rt-dev does not exist: amcr_install_clang adds it only when apt knows it.
+AMCR_CLANG_PACKAGES=(clang cmake)
 
 # Debian's python3, never a pyenv/venv one: Debian's ROS Python modules are installed for it alone.
 AMCR_CMAKE_ARGS=(-DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3)
@@ -75,10 +75,10 @@ amcr_install_packages() {
     -o Dpkg::Use-Pty=0 "${missing[@]}"
 }
 
-# AMCR_FUZZ_PACKAGES, plus libclang-rt-dev where apt knows it (bookworm); then checks that clang++
-# links a libFuzzer target, and says why not when it cannot.
-amcr_install_fuzz_tools() {
-  local packages=("${AMCR_FUZZ_PACKAGES[@]}")
+# AMCR_CLANG_PACKAGES, plus libclang-rt-dev where apt knows it (bookworm); then checks that clang++
+# links a libFuzzer target with AddressSanitizer and UBSan, and says why not when it cannot.
+amcr_install_clang() {
+  local packages=("${AMCR_CLANG_PACKAGES[@]}")
   local candidate=(sed -n 's/^ *Candidate: \([^(]\)/\1/p')
   if [[ -z "$(apt-cache policy clang 2>/dev/null | "${candidate[@]}")" ]] && command -v apt-get >/dev/null; then
     # A fresh machine's package lists may be empty: then apt knows neither package.
@@ -96,8 +96,8 @@ amcr_install_fuzz_tools() {
   if ! clang++ -fsanitize=fuzzer,address,undefined -o "$probe/probe" "$probe/probe.cpp" >"$probe/log" 2>&1; then
     cat "$probe/log" >&2
     rm -rf "$probe"
-    amcr_die "cannot fuzz on this machine: clang++ ($(command -v clang++ || echo 'not found')) cannot link a" \
-      "libFuzzer target (-fsanitize=fuzzer: the libclang_rt.fuzzer runtime is missing). On Debian install" \
+    amcr_die "clang++ ($(command -v clang++ || echo 'not found')) cannot link a libFuzzer target with the" \
+      "sanitizers (-fsanitize=fuzzer,address,undefined: the libclang_rt runtimes are missing). On Debian install" \
       "clang and libclang-rt-dev, on Ubuntu 20.04 clang (libclang-common-10-dev)"
   fi
   rm -rf "$probe"
