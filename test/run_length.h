@@ -4,8 +4,9 @@
 // (scripts/test --sanitize: CMake option AMCR_SANITIZE, which defines AMCR_SHORT_RUNS for the test
 // binaries) runs a recognizer frame 5-20 times slower, and what it looks for, memory and
 // undefined-behaviour faults, a short run reaches as well as a long one: the same code runs on every
-// seed and every frame. There a test runs the first of its repeated seeds or cases only and keeps
-// every assertion, evaluated on what it ran (docs/testing.md, "Sanitizers").
+// seed and every frame. There a test runs the first of its repeated seeds or cases only, or fewer
+// frames where the later ones only repeat what its assertion has seen, and keeps every assertion,
+// evaluated on what it ran (docs/testing.md, "Sanitizers").
 #pragma once
 
 #include <algorithm>
