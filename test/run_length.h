@@ -9,7 +9,6 @@
 // evaluated on what it ran (docs/testing.md, "Sanitizers").
 #pragma once
 
-#include <algorithm>
 #include <cstddef>
 #include <vector>
 

@@ -103,7 +103,8 @@ Outcome run(const std::vector<cv::Mat>& frames, const amcr::Affine& truth,
 }  // namespace
 
 // Every 15 degrees (every 60 under the sanitizers: test/run_length.h), the
-// recognizer's seed going round 1-3: the disc and the bar fix the turn, so the pose must be the right one of the square's four, and
+// recognizer's seed going round 1-3: the disc and the bar fix the turn, so
+// the pose must be the right one of the square's four, and
 // within half a pixel and 0.2 degrees (the median over the turns).
 TEST(GreyTemplates, FoundInEveryTurn)
 {
@@ -133,7 +134,8 @@ TEST(GreyTemplates, FoundInEveryTurn)
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
     return v.empty() ? -1.0 : v[v.size() / 2];
   };
-  std::cout << "[ template ] found in " << found << " of " << turns << " turns by frame " << kFrames << "; median corner error "
+  std::cout << "[ template ] found in " << found << " of " << turns << " turns by frame " << kFrames
+            << "; median corner error "
             << median(corner_errors) << " px, turn error " << median(turn_errors) << " deg"
             << (missed.empty() ? "" : "; missed:" + missed) << std::endl;
   EXPECT_EQ(found, turns) << "missed:" << missed;

@@ -414,8 +414,10 @@ TEST(Jumps, ANewSceneAndANewResolutionReseedWithoutACrash)
   int small_frames = 0;
   for (const auto& objects : after_resize)
     small_frames += find(objects, "star", small_star, kStaticTolerance) != nullptr;
-  std::cout << "[ jumps    ] new scene, 3 seeds: " << reseeded << " V-particles re-seeded, star found with " << found_with
-            << " seeds, in " << star_frames << " of " << 120 * seeds << " frames; at 320x240: star in " << small_frames << " of 120 frames"
+  std::cout << "[ jumps    ] new scene, " << seeds << " seeds: " << reseeded << " V-particles re-seeded, star found with "
+            << found_with
+            << " seeds, in " << star_frames << " of " << 120 * seeds << " frames; at 320x240: star in " << small_frames
+            << " of 120 frames"
             << std::endl;
   EXPECT_GT(small_frames, 0) << "the star at the new resolution was never recognized";
 }
