@@ -10,6 +10,7 @@
 #include "amcr/extraction/outline_fit.h"
 #include "amcr/extraction/perspective_choice.h"
 #include "amcr/extraction/viewing_angle.h"
+#include "amcr/memory/self_similar_turns.h"
 #include "extraction_steps.h"
 
 namespace amcr
@@ -19,13 +20,18 @@ namespace extraction_steps
 namespace
 {
 constexpr std::size_t kMaxPerspectiveFits = 3;  // best candidates per frame that may get a homography
+// A new object's fit that reaches this share of the decision threshold is
+// tried again at its prototype's self-similar turns.
+constexpr double kTurnedFitRatio = 0.6;
 
 /// A candidate for a prototype at a table -> image affine (score, support,
 /// correspondences, outline); false when the affine is out of bounds or the
 /// object too small. With a `perspective` whose homography is used, the
-/// outline, the score and the correspondences follow the homography.
+/// outline, the score and the correspondences follow the homography. With
+/// `cluster_to_table`, the V-particles' cluster means are read through it
+/// (clusters converged on a turn of the prototype onto itself).
 bool describeObject(const ExtractionInput& in, int prototype, const Affine& table_to_image, Candidate& candidate,
-                    const PerspectiveFit* perspective = nullptr)
+                    const PerspectiveFit* perspective = nullptr, const Affine* cluster_to_table = nullptr)
 {
   const Prototype& p = in.memory[prototype];
   double smallest = 0, largest = 0;
@@ -67,10 +73,11 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
     if (c.prototype != prototype || !c.converged)
       continue;
     const cv::Point2d image_point(v[c.v].x, v[c.v].y);
-    const cv::Point2d predicted = toImage(cv::Point2d(c.mean));
+    const cv::Point2d mean = cluster_to_table ? applyAffine(*cluster_to_table, cv::Point2d(c.mean)) : cv::Point2d(c.mean);
+    const cv::Point2d predicted = toImage(mean);
     if (!(std::hypot(predicted.x - image_point.x, predicted.y - image_point.y) <= in.params.group_tolerance))
       continue;
-    object.correspondences.push_back({image_point, applyAffine(p.tableToOriginal(), cv::Point2d(c.mean))});
+    object.correspondences.push_back({image_point, applyAffine(p.tableToOriginal(), mean)});
     candidate.v_particles.push_back(c.v);
   }
   object.support = static_cast<int>(object.correspondences.size());
@@ -106,6 +113,33 @@ void turnRoundShape(const ExtractionInput& in, Candidate& candidate)
   const RivalVerdict verdict = rivalVerdict(in, prototype, liftAffine(refined), other.score_tolerance);
   if (verdict.support >= std::max(in.params.rival_part_support, in.params.decision_threshold))
     candidate = std::move(other);
+}
+
+/// A new object's fit may have converged on a turn of its prototype onto
+/// itself (self_similar_turns.h: a square face whose ring of dots is nearly
+/// symmetric, whose outline is then on edges and its dots just off them,
+/// scoring below the decision or just above it): the fit started at each
+/// such turn of the pose, refined, replaces the candidate when it scores
+/// higher. Not a tracked object's: its turn was chosen when its track started.
+void tryTurnedFits(const ExtractionInput& in, Candidate& candidate)
+{
+  if (candidate.object.score < kTurnedFitRatio * in.params.decision_threshold)
+    return;
+  const int prototype = candidate.object.prototype_id;
+  const Prototype& p = in.memory[prototype];
+  const Affine fitted = candidate.table_to_image;  // each turn of the first fit, not of a turned one
+  for (const Affine& turn : selfSimilarTurns(p))
+  {
+    // The pose image(turn(q)): a cluster mean m of the fit's labelling is turn^-1(m) in this one.
+    Affine unturn;
+    if (!invertAffine(turn, unturn))
+      continue;
+    Candidate other;
+    const Affine start = composeAffine(turn, fitted);
+    const Affine refined = refineOnEdges(p, in.scanner, start, in.params.refine_iterations, in.params.refine_search);
+    if (describeObject(in, prototype, refined, other, nullptr, &unturn) && other.object.score > candidate.object.score)
+      candidate = std::move(other);
+  }
 }
 
 /// The fit of the candidate's outline by a homography, when the outline
@@ -155,6 +189,8 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
         found[s] = 1;
       }
     }
+    if (found[s] && !start.tracked)
+      tryTurnedFits(in, fitted[s]);
   });
   std::vector<Candidate> candidates;
   for (std::size_t s = 0; s < starts.size(); ++s)

@@ -39,6 +39,9 @@ struct FitStart
 {
   int prototype;
   std::vector<Affine> affines;
+  /// Whether a tracked object's pose is among the affines: its fit was
+  /// chosen when the track started and is not tried at other turns.
+  bool tracked = false;
 };
 
 /// The generic rivals of the prototypes the frame's fits start from, by

@@ -160,7 +160,7 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   std::vector<bool> track_used(tracks.size(), false);
   for (const GroupStart& g : groups)
   {
-    FitStart start{g.group->prototype, {g.group->table_to_image}};
+    FitStart start{g.group->prototype, {g.group->table_to_image}, !g.near.empty()};
     for (std::size_t k : g.near)
     {
       start.affines.push_back(track_affines[k]);
@@ -170,7 +170,7 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   }
   for (std::size_t k = 0; k < tracks.size(); ++k)
     if (!track_used[k])
-      starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}});
+      starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}, true});
   addCompetingStarts(in, tracks, track_affines, starts);
   return starts;
 }
