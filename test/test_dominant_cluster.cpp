@@ -83,6 +83,45 @@ TEST(DominantCluster, OnlyTheGivenRangeCounts)
   expectCluster(amcr::dominantCluster(m, 40, 80, kPrototypes, kRadius), 1, {70, 70}, 10.f / 40.f, 1e-6f);
 }
 
+/// Gives the particles [first, last) of `m` the fitted affine `a` (image -> table).
+void fit(amcr::MParticleSet& m, std::size_t first, std::size_t last, const amcr::Affine& a)
+{
+  for (std::size_t i = first; i < last; ++i)
+  {
+    for (int e = 0; e < 6; ++e)
+      m.affine[e][i] = static_cast<float>(a(e / 3, e % 3));
+    m.affine_valid[i] = amcr::kFittedAffine;
+  }
+}
+
+TEST(DominantCluster, TheLikeliestModeIsTheMostLikelyParticlesOwn)
+{
+  // Prototype 0 holds the densest mode (40 together, less likely); prototype
+  // 3 a loose one of 8 about its most likely particle (-7 against -9).
+  amcr::MParticleSet m = particles(10, {{40, 0, {30, 30}, 2.f, -9.f},
+                                        {1, 3, {80, 50}, 0.f, -7.f},
+                                        {7, 3, {80, 50}, 3.f, -8.f},
+                                        {12, 1, {64, 64}, 60.f, -10.f}});
+  const amcr::Affine a(0.5, 0.0, 10.0, 0.0, 0.5, 20.0), b(0.6, 0.1, 8.0, -0.1, 0.6, 22.0);
+  fit(m, 0, 40, b);
+  fit(m, 40, 48, a);
+  const amcr::VParticleCluster c = amcr::dominantCluster(m, 0, 60, kPrototypes, kRadius);
+  expectCluster(c, 0, {30, 30}, 40.f / 60.f, 1e-6f);
+  EXPECT_EQ(c.likeliest.prototype, 3);
+  EXPECT_FLOAT_EQ(c.likeliest.log_likelihood, -7.f);
+  EXPECT_NEAR(c.likeliest.mean.x, 80.f, 1.5f);
+  EXPECT_NEAR(c.likeliest.mean.y, 50.f, 1.5f);
+  ASSERT_TRUE(c.likeliest.has_affine);
+  // The mean A of the mode's particles with an A: 8 of them, all at `a`.
+  EXPECT_LT(cv::norm(cv::Matx<double, 2, 3>(c.likeliest.image_to_table - a)), 1e-5);
+}
+
+TEST(DominantCluster, NoLikeliestModeWithoutAFittedAffine)
+{
+  const amcr::MParticleSet m = particles(11, {{20, 1, {30, 30}, 2.f, -8.f}});
+  EXPECT_EQ(amcr::dominantCluster(m, 0, 20, kPrototypes, kRadius).likeliest.prototype, -1);
+}
+
 TEST(DominantCluster, AnEmptyRangeHasNoCluster)
 {
   amcr::MParticleSet m;

@@ -10,6 +10,16 @@
 
 namespace amcr
 {
+/// The mode of a V-particle's M-particles about its most likely one.
+struct LikeliestMode
+{
+  int prototype = -1;            ///< -1: no measured M-particle with a fitted A
+  cv::Point2f mean;              ///< table px of that prototype
+  float log_likelihood = 0.f;    ///< of the most likely M-particle (eq. 5-6, last update)
+  Affine image_to_table;         ///< mean A of the mode's M-particles with a valid A
+  bool has_affine = false;
+};
+
 /// The densest M-cluster of one V-particle.
 struct VParticleCluster
 {
@@ -24,6 +34,9 @@ struct VParticleCluster
   /// dominantClusters, the one place of the extraction that reads
   /// cluster_min_share; everything after reads this.
   bool converged = false;
+  /// The mode about the most likely M-particle (result extraction: a fit
+  /// starts there for the most likely V-particles that have not converged).
+  LikeliestMode likeliest;
 };
 
 /// Finds the densest cluster among M-particles [begin, end): a mean shift of

@@ -16,6 +16,7 @@ namespace
 {
 constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
 constexpr double kTrackDistance = 40.0;            // px an object's centre may move between frames and keep its track
+constexpr int kLikeliestStarts = 4;                 // unconverged V-particles whose likeliest mode is fitted per frame
 
 /// Whether a start of `prototype` begins near `centre` (image px).
 bool startedNear(const ExtractionInput& in, const std::vector<FitStart>& starts, int prototype,
@@ -60,6 +61,48 @@ std::vector<FitStart> lookAlikeStarts(const ExtractionInput& in, const std::vect
         starts.push_back({pair->b, {composeAffine(b_to_a, track_affines[k])}});
     }
   return starts;
+}
+
+// The likeliest modes of the V-particles that have not converged, the most
+// likely first (object_extraction.h): with many prototypes the likelihood
+// of eq. 5 spreads a V-particle's M-particles over hypotheses that explain
+// its rays almost as well as the truth, so its densest mode converges late
+// or never, while its most likely one is often the truth already. A fit
+// there is checked against the image as any other; one that could be
+// reported leads the injection, which concentrates the M-particles on it.
+// Not on a tracked object: its track starts there already, and the
+// competing fits try its alternatives.
+void addLikeliestStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
+                        const std::vector<Affine>& track_affines, std::vector<FitStart>& starts)
+{
+  std::vector<const VParticleCluster*> open;
+  for (const VParticleCluster& c : in.clusters)
+    if (!c.converged && c.likeliest.has_affine)
+      open.push_back(&c);
+  std::stable_sort(open.begin(), open.end(), [](const VParticleCluster* a, const VParticleCluster* b) {
+    return a->likeliest.log_likelihood > b->likeliest.log_likelihood;
+  });
+  int added = 0;
+  for (const VParticleCluster* c : open)
+  {
+    if (added >= kLikeliestStarts)
+      break;
+    Affine table_to_image;
+    if (!invertAffine(c->likeliest.image_to_table, table_to_image))
+      continue;
+    const int prototype = c->likeliest.prototype;
+    const cv::Point2d centre = applyAffine(table_to_image, in.memory[prototype].centre());
+    bool on_track = false;
+    for (std::size_t k = 0; k < tracks.size() && !on_track; ++k)
+    {
+      const cv::Point2d c_track = applyAffine(track_affines[k], in.memory[tracks[k].object.prototype_id].centre());
+      on_track = std::hypot(c_track.x - centre.x, c_track.y - centre.y) <= kTrackDistance;
+    }
+    if (on_track || startedNear(in, starts, prototype, centre))
+      continue;
+    starts.push_back({prototype, {table_to_image}});
+    ++added;
+  }
 }
 
 // The other interpretations V-particles are still deciding between
@@ -171,6 +214,7 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   for (std::size_t k = 0; k < tracks.size(); ++k)
     if (!track_used[k])
       starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}, true});
+  addLikeliestStarts(in, tracks, track_affines, starts);
   addCompetingStarts(in, tracks, track_affines, starts);
   return starts;
 }

@@ -28,6 +28,9 @@ constexpr double kDifferingPartsMargin = 0.25;
 // prototype they were taken for, rarely verify that well.
 constexpr double kClearWholeMargin = 0.1;
 constexpr double kClearWholeScore = 0.9;
+// Look-alikes whose whole outlines verify within this of each other are a
+// tie on the whole: their differing parts order them (adoptSupport).
+constexpr double kWholeTie = 0.02;
 
 /// Whether `better` verifies clearly and kClearWholeMargin better than
 /// `supported` on the whole outline.
@@ -68,10 +71,24 @@ bool winsOnDifferingParts(const ExtractionInput& in, const Candidate& better, co
 void adoptSupport(const ExtractionInput& in, std::vector<Candidate>& candidates)
 {
   const std::vector<VParticle>& v = in.v_particles;
+  // A tie on the whole outline (a bird with and without its crest, both on
+  // its body's edges): the one that wins where they differ goes first, so
+  // that it is the one that may adopt the other's support.
+  for (std::size_t i = 0; i + 1 < candidates.size(); ++i)
+  {
+    Candidate& first = candidates[i];
+    Candidate& second = candidates[i + 1];
+    if (second.object.prototype_id != first.object.prototype_id &&
+        first.object.score - second.object.score <= kWholeTie &&
+        second.object.score >= in.params.decision_threshold &&
+        outlineOverlap(first.object.outline, second.object.outline) > kSameObjectOverlap &&
+        winsOnDifferingParts(in, second, first))
+      std::swap(first, second);
+  }
   for (std::size_t i = 0; i < candidates.size(); ++i)
   {
     Candidate& better = candidates[i];
-    for (std::size_t j = i + 1; j < candidates.size(); ++j)  // best score first: j scores no more than i
+    for (std::size_t j = i + 1; j < candidates.size(); ++j)  // best first: j scores no more than i, or ties
     {
       const Candidate& supported = candidates[j];
       if (supported.object.prototype_id == better.object.prototype_id ||

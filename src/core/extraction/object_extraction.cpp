@@ -51,6 +51,28 @@ cv::Point2f meanShift(const MParticleSet& m, std::size_t begin, std::size_t end,
   }
   return centre;
 }
+
+/// The mean A of prototype k's M-particles with a fitted A within the disc of
+/// squared radius r2 about `centre`; false when there is none.
+bool meanAffine(const MParticleSet& m, std::size_t begin, std::size_t end, int k, cv::Point2f centre, float r2,
+                Affine& mean)
+{
+  double a[6] = {0, 0, 0, 0, 0, 0};
+  int with_affine = 0;
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    const float dx = m.x[i] - centre.x, dy = m.y[i] - centre.y;
+    if (m.prototype[i] != k || dx * dx + dy * dy > r2 || m.affine_valid[i] != kFittedAffine)
+      continue;
+    for (int j = 0; j < 6; ++j)
+      a[j] += m.affine[j][i];
+    ++with_affine;
+  }
+  if (with_affine == 0)
+    return false;
+  mean = Affine(a[0], a[1], a[2], a[3], a[4], a[5]) * (1.0 / with_affine);
+  return true;
+}
 }  // namespace
 
 VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
@@ -96,24 +118,27 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
       centre = candidate_centre;
     }
   }
-  double a[6] = {0, 0, 0, 0, 0, 0};
-  int with_affine = 0;
-  for (std::size_t i = begin; i < end; ++i)
-  {
-    const float dx = m.x[i] - centre.x, dy = m.y[i] - centre.y;
-    if (m.prototype[i] != k || dx * dx + dy * dy > r2 || m.affine_valid[i] != kFittedAffine)
-      continue;
-    for (int j = 0; j < 6; ++j)
-      a[j] += m.affine[j][i];
-    ++with_affine;
-  }
   cluster.prototype = k;
   cluster.mean = centre;
   cluster.share = static_cast<float>(members) / static_cast<float>(end - begin);
-  if (with_affine > 0)
+  cluster.has_affine = meanAffine(m, begin, end, k, centre, r2, cluster.image_to_table);
+  // The mode about the single most likely M-particle (its prototype's best):
+  // with a likelihood that hardly tells prototypes apart, the truth is often
+  // the most likely hypothesis long before its mode is the densest.
+  int top = -1;
+  for (int candidate = 0; candidate < prototype_count; ++candidate)
+    if (most_likely[candidate] != end &&
+        (top < 0 || m.log_likelihood[most_likely[candidate]] > m.log_likelihood[most_likely[top]]))
+      top = candidate;
+  if (top >= 0 && m.affine_valid[most_likely[top]] == kFittedAffine)
   {
-    cluster.image_to_table = Affine(a[0], a[1], a[2], a[3], a[4], a[5]) * (1.0 / with_affine);
-    cluster.has_affine = true;
+    const std::size_t start = most_likely[top];
+    int top_members = 0;
+    LikeliestMode& mode = cluster.likeliest;
+    mode.prototype = top;
+    mode.log_likelihood = m.log_likelihood[start];
+    mode.mean = meanShift(m, begin, end, top, cv::Point2f(m.x[start], m.y[start]), r2, top_members);
+    mode.has_affine = meanAffine(m, begin, end, top, mode.mean, r2, mode.image_to_table);
   }
   return cluster;
 }
