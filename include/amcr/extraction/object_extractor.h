@@ -15,6 +15,7 @@
 #include "amcr/base/params.h"
 #include "amcr/filter/discriminative_places.h"
 #include "amcr/filter/particles.h"
+#include "amcr/filter/proposal_index.h"
 #include "amcr/filter/resampler.h"
 #include "amcr/memory/prototype_memory.h"
 #include "amcr/scan/radial_scan.h"
@@ -65,6 +66,7 @@ struct FilterReading
   std::vector<VParticleCluster> clusters;
   const PrototypeMemory& memory;
   const DiscriminativePlaces* look_alikes;  ///< the memory's look-alike pairs; null: none
+  const ProposalIndex* index = nullptr;     ///< the memory's proposal index (pose votes); null: none
 };
 
 /// The dominant cluster of each of the filter's V-particles (index = V index),

@@ -142,6 +142,31 @@ void tryTurnedFits(const ExtractionInput& in, Candidate& candidate)
   }
 }
 
+/// The V-particles whose rays voted for a start's pose support its fit as
+/// converged ones do (pose_votes.h: their rays match the prototype there),
+/// each that lies on the fitted object, at the prototype point the fit puts
+/// under it.
+void addVoterSupport(const ExtractionInput& in, const std::vector<int>& voters, Candidate& candidate)
+{
+  const Prototype& p = in.memory[candidate.object.prototype_id];
+  Affine image_to_table;
+  if (!invertAffine(candidate.table_to_image, image_to_table))
+    return;
+  for (int k : voters)
+  {
+    if (std::find(candidate.v_particles.begin(), candidate.v_particles.end(), k) != candidate.v_particles.end())
+      continue;
+    const cv::Point2d image_point(in.v_particles[k].x, in.v_particles[k].y);
+    const cv::Point2d table = applyAffine(image_to_table, image_point);
+    const int x = cvRound(table.x), y = cvRound(table.y);
+    if (x < 0 || y < 0 || x >= p.mask().cols || y >= p.mask().rows || p.mask().at<std::uint8_t>(y, x) == 0)
+      continue;
+    candidate.object.correspondences.push_back({image_point, applyAffine(p.tableToOriginal(), table)});
+    candidate.v_particles.push_back(k);
+  }
+  candidate.object.support = static_cast<int>(candidate.object.correspondences.size());
+}
+
 /// The fit of the candidate's outline by a homography, when the outline
 /// demands it (perspective_choice.h); the candidate is left as it is otherwise.
 void fitPerspective(const ExtractionInput& in, Candidate& candidate)
@@ -191,6 +216,8 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
     }
     if (found[s] && !start.tracked)
       tryTurnedFits(in, fitted[s]);
+    if (found[s] && !start.voters.empty())
+      addVoterSupport(in, start.voters, fitted[s]);
   });
   std::vector<Candidate> candidates;
   for (std::size_t s = 0; s < starts.size(); ++s)

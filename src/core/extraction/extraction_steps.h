@@ -15,6 +15,7 @@
 #include "amcr/extraction/track_registry.h"
 #include "amcr/filter/discriminative_places.h"
 #include "amcr/filter/particles.h"
+#include "amcr/filter/proposal_index.h"
 #include "amcr/memory/prototype_memory.h"
 #include "amcr/scan/radial_scan.h"
 #include "report_rules.h"
@@ -42,6 +43,8 @@ struct FitStart
   /// Whether a tracked object's pose is among the affines: its fit was
   /// chosen when the track started and is not tried at other turns.
   bool tracked = false;
+  /// The V-particles whose rays voted for the start's pose (pose_votes.h).
+  std::vector<int> voters;
 };
 
 /// The generic rivals of the prototypes the frame's fits start from, by
@@ -60,6 +63,7 @@ struct ExtractionInput
   double max_affine_scale;             ///< of the observation model (ObservationParams): the fits' scale bound
   int num_threads;                     ///< RunParams::num_threads: the fits' and the rival checks' threads
   const RivalTable* rivals = nullptr;  ///< rivalTable() of the frame's starts; none: fitted where needed
+  const ProposalIndex* index = nullptr;  ///< the memory's proposal index (pose votes); none: no votes
 };
 
 /// Where the fits start: each group of clusters, each tracked object, and

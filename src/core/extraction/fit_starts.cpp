@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <opencv2/imgproc.hpp>
+
 #include "amcr/filter/discriminative_attention.h"
+#include "amcr/extraction/pose_votes.h"
 #include "amcr/filter/discriminative_places.h"
 #include "extraction_steps.h"
 
@@ -16,7 +19,7 @@ namespace
 {
 constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
 constexpr double kTrackDistance = 40.0;            // px an object's centre may move between frames and keep its track
-constexpr int kLikeliestStarts = 4;                 // unconverged V-particles whose likeliest mode is fitted per frame
+constexpr int kVotesPerPlace = 3;                   // the index's nearest matches each V-particle's rays vote for
 
 /// Whether a start of `prototype` begins near `centre` (image px).
 bool startedNear(const ExtractionInput& in, const std::vector<FitStart>& starts, int prototype,
@@ -58,9 +61,36 @@ std::vector<FitStart> lookAlikeStarts(const ExtractionInput& in, const std::vect
     {
       Affine b_to_a;
       if (invertAffine(pair->a_to_b, b_to_a))
-        starts.push_back({pair->b, {composeAffine(b_to_a, track_affines[k])}});
+        starts.push_back({pair->b, {composeAffine(b_to_a, track_affines[k])}, false, {}});
     }
   return starts;
+}
+
+/// Whether V-particle `v` lies inside a tracked object's outline (in the
+/// previous frame's pose: the flow moved both alike).
+bool onTrack(const std::vector<Track>& tracks, const VParticle& v)
+{
+  for (const Track& t : tracks)
+  {
+    const std::vector<cv::Point2d>& outline = t.object.outline;
+    if (outline.size() >= 3 &&
+        cv::pointPolygonTest(std::vector<cv::Point2f>(outline.begin(), outline.end()), cv::Point2f(v.x, v.y), false) >= 0)
+      return true;
+  }
+  return false;
+}
+
+/// Whether `centre` (image px) lies within kTrackDistance of a tracked object's centre.
+bool nearTrack(const ExtractionInput& in, const std::vector<Track>& tracks, const std::vector<Affine>& track_affines,
+               const cv::Point2d& centre)
+{
+  for (std::size_t k = 0; k < tracks.size(); ++k)
+  {
+    const cv::Point2d c = applyAffine(track_affines[k], in.memory[tracks[k].object.prototype_id].centre());
+    if (std::hypot(c.x - centre.x, c.y - centre.y) <= kTrackDistance)
+      return true;
+  }
+  return false;
 }
 
 // The likeliest modes of the V-particles that have not converged, the most
@@ -71,7 +101,7 @@ std::vector<FitStart> lookAlikeStarts(const ExtractionInput& in, const std::vect
 // there is checked against the image as any other; one that could be
 // reported leads the injection, which concentrates the M-particles on it.
 // Not on a tracked object: its track starts there already, and the
-// competing fits try its alternatives.
+// competing fits try its alternatives. Up to competing_fits per frame.
 void addLikeliestStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
                         const std::vector<Affine>& track_affines, std::vector<FitStart>& starts)
 {
@@ -85,22 +115,50 @@ void addLikeliestStarts(const ExtractionInput& in, const std::vector<Track>& tra
   int added = 0;
   for (const VParticleCluster* c : open)
   {
-    if (added >= kLikeliestStarts)
+    if (added >= in.params.competing_fits)
       break;
     Affine table_to_image;
     if (!invertAffine(c->likeliest.image_to_table, table_to_image))
       continue;
     const int prototype = c->likeliest.prototype;
     const cv::Point2d centre = applyAffine(table_to_image, in.memory[prototype].centre());
-    bool on_track = false;
-    for (std::size_t k = 0; k < tracks.size() && !on_track; ++k)
-    {
-      const cv::Point2d c_track = applyAffine(track_affines[k], in.memory[tracks[k].object.prototype_id].centre());
-      on_track = std::hypot(c_track.x - centre.x, c_track.y - centre.y) <= kTrackDistance;
-    }
-    if (on_track || startedNear(in, starts, prototype, centre))
+    if (nearTrack(in, tracks, track_affines, centre) || startedNear(in, starts, prototype, centre))
       continue;
-    starts.push_back({prototype, {table_to_image}});
+    starts.push_back({prototype, {table_to_image}, false, {}});
+    ++added;
+  }
+}
+
+// Poses the image proposes (pose_votes.h): the rays where each V-particle
+// that has not converged stands, looked up in the proposal index, pooled by
+// prototype and pose; the pools with most votes are fitted, up to
+// pose_vote_fits per frame (V-particles on a tracked object do not vote; no
+// pool near a tracked object or where a start of its prototype is).
+void addVoteStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
+                   const std::vector<Affine>& track_affines, std::vector<FitStart>& starts)
+{
+  if (!in.index || in.params.pose_vote_fits <= 0)
+    return;
+  std::vector<RayPlace> places;
+  std::vector<int> place_v;  // the V-particle of each place
+  for (const VParticleCluster& c : in.clusters)
+    if (!c.converged && !onTrack(tracks, in.v_particles[c.v]))
+    {
+      places.push_back({in.v_particles[c.v].x, in.v_particles[c.v].y, in.v_particles[c.v].theta});
+      place_v.push_back(c.v);
+    }
+  int added = 0;
+  for (const PoseVote& vote : poolPoseVotes(*in.index, in.memory, in.scanner, places, kVotesPerPlace))
+  {
+    if (added >= in.params.pose_vote_fits)
+      break;
+    const cv::Point2d centre = applyAffine(vote.table_to_image, in.memory[vote.prototype].centre());
+    if (nearTrack(in, tracks, track_affines, centre) || startedNear(in, starts, vote.prototype, centre))
+      continue;
+    FitStart start{vote.prototype, {vote.table_to_image}, false, {}};
+    for (int place : vote.places)
+      start.voters.push_back(place_v[place]);
+    starts.push_back(std::move(start));
     ++added;
   }
 }
@@ -135,7 +193,7 @@ void addCompetingStarts(const ExtractionInput& in, const std::vector<Track>& tra
       Affine table_to_image;
       if (h.prototype == v.competing.hypothesis[0].prototype || !hypothesisTableToImage(h, table_to_image))
         continue;
-      alternatives.push_back({h.share, {h.prototype, {table_to_image}}});
+      alternatives.push_back({h.share, {h.prototype, {table_to_image}, false, {}}});
     }
   std::stable_sort(alternatives.begin(), alternatives.end(),
                    [](const Alternative& a, const Alternative& b) { return a.share > b.share; });
@@ -203,7 +261,7 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   std::vector<bool> track_used(tracks.size(), false);
   for (const GroupStart& g : groups)
   {
-    FitStart start{g.group->prototype, {g.group->table_to_image}, !g.near.empty()};
+    FitStart start{g.group->prototype, {g.group->table_to_image}, !g.near.empty(), {}};
     for (std::size_t k : g.near)
     {
       start.affines.push_back(track_affines[k]);
@@ -213,8 +271,9 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   }
   for (std::size_t k = 0; k < tracks.size(); ++k)
     if (!track_used[k])
-      starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}, true});
+      starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}, true, {}});
   addLikeliestStarts(in, tracks, track_affines, starts);
+  addVoteStarts(in, tracks, track_affines, starts);
   addCompetingStarts(in, tracks, track_affines, starts);
   return starts;
 }

@@ -126,7 +126,8 @@ std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter)
 
 FilterReading readFilter(const ParticleFilter& filter)
 {
-  return FilterReading{filter.vParticles(), filterClusters(filter), filter.memory(), filter.lookAlikes()};
+  return FilterReading{filter.vParticles(), filterClusters(filter), filter.memory(), filter.lookAlikes(),
+                       filter.proposalIndex()};
 }
 
 Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, const TrackRegistry& tracks,
@@ -135,8 +136,9 @@ Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, co
   Extraction extraction;
   extraction.clusters = std::move(filter.clusters);
   const std::vector<VParticle>& v = filter.v_particles;
-  const ExtractionInput plain{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory,
-                              max_affine_scale, num_threads};
+  ExtractionInput plain{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory,
+                        max_affine_scale, num_threads};
+  plain.index = filter.index;
   const std::vector<FitStart> starts = fitStarts(plain, tracks);
   // The generic rivals of the prototypes fitted in this frame, once each.
   const RivalTable rivals = rivalTable(plain, starts);
