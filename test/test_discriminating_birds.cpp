@@ -126,9 +126,11 @@ TEST(DiscriminatingBirds, TheCrestDecidesSoonerWithDiscriminativeAttention)
             << without_total << " without, " << moves_total << " with discriminative moves as well\n";
   if (seeds.size() < kSeeds.size())
     return;  // totals over two seeds say nothing: their comparisons are the plain build's
-  // A third fewer frames in all (measured: over half).
-  EXPECT_LE(3 * with_total, 2 * without_total);
-  EXPECT_LE(3 * moves_total, 2 * without_total);
+  // A fifth fewer frames in all. Measured: 31 and 34 frames against 45 without. Without them the
+  // crested bird's fits that converged a turn off are refined again at its turns onto itself
+  // (self_similar_turns.h) since 2026-12-07, which found it sooner there (65 frames before).
+  EXPECT_LE(5 * with_total, 4 * without_total);
+  EXPECT_LE(5 * moves_total, 4 * without_total);
   EXPECT_LE(with_wrong, without_wrong);
   EXPECT_GE(visiting, kSeedsVisiting) << "discriminating V-particles should go to the head";
 }
