@@ -126,7 +126,7 @@ TEST(DiscriminatingBirds, TheCrestDecidesSoonerWithDiscriminativeAttention)
             << without_total << " without, " << moves_total << " with discriminative moves as well\n";
   if (seeds.size() < kSeeds.size())
     return;  // totals over two seeds say nothing: their comparisons are the plain build's
-  // A fifth fewer frames in all. Measured: 31 and 34 frames against 45 without. Without them the
+  // A fifth fewer frames in all. Measured: 28 and 28 frames against 45 without. Without them the
   // crested bird's fits that converged a turn off are refined again at its turns onto itself
   // (self_similar_turns.h) since 2026-12-07, which found it sooner there (65 frames before).
   EXPECT_LE(5 * with_total, 4 * without_total);

@@ -201,6 +201,7 @@ struct ExtractionParams
   /// per frame beside the groups' (fit_starts.cpp) [0, 64]; 0 = none
   /// (and no look-alike pairs are found).
   int competing_fits = 4;
+  int likeliest_fits = 0;             ///< unconverged V-particles' likeliest modes fitted per frame; 0 = off
   int pose_vote_fits = 0;             ///< pools of the image's pose votes fitted per frame; 0 = off
   double group_tolerance = 8.0;       ///< V-particles agree when they map within this, working px [0.5, 200]
   int min_support = 2;                ///< V-particles an object needs [1, 5000]

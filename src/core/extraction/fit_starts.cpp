@@ -101,7 +101,7 @@ bool nearTrack(const ExtractionInput& in, const std::vector<Track>& tracks, cons
 // there is checked against the image as any other; one that could be
 // reported leads the injection, which concentrates the M-particles on it.
 // Not on a tracked object: its track starts there already, and the
-// competing fits try its alternatives. Up to competing_fits per frame.
+// competing fits try its alternatives. Up to likeliest_fits per frame.
 void addLikeliestStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
                         const std::vector<Affine>& track_affines, std::vector<FitStart>& starts)
 {
@@ -115,7 +115,7 @@ void addLikeliestStarts(const ExtractionInput& in, const std::vector<Track>& tra
   int added = 0;
   for (const VParticleCluster* c : open)
   {
-    if (added >= in.params.competing_fits)
+    if (added >= in.params.likeliest_fits)
       break;
     Affine table_to_image;
     if (!invertAffine(c->likeliest.image_to_table, table_to_image))
