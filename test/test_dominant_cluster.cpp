@@ -105,7 +105,7 @@ TEST(DominantCluster, TheLikeliestModeIsTheMostLikelyParticlesOwn)
   const amcr::Affine a(0.5, 0.0, 10.0, 0.0, 0.5, 20.0), b(0.6, 0.1, 8.0, -0.1, 0.6, 22.0);
   fit(m, 0, 40, b);
   fit(m, 40, 48, a);
-  const amcr::VParticleCluster c = amcr::dominantCluster(m, 0, 60, kPrototypes, kRadius);
+  const amcr::VParticleCluster c = amcr::dominantCluster(m, 0, 60, kPrototypes, kRadius, true);
   expectCluster(c, 0, {30, 30}, 40.f / 60.f, 1e-6f);
   EXPECT_EQ(c.likeliest.prototype, 3);
   EXPECT_FLOAT_EQ(c.likeliest.log_likelihood, -7.f);
@@ -119,7 +119,7 @@ TEST(DominantCluster, TheLikeliestModeIsTheMostLikelyParticlesOwn)
 TEST(DominantCluster, NoLikeliestModeWithoutAFittedAffine)
 {
   const amcr::MParticleSet m = particles(11, {{20, 1, {30, 30}, 2.f, -8.f}});
-  EXPECT_EQ(amcr::dominantCluster(m, 0, 20, kPrototypes, kRadius).likeliest.prototype, -1);
+  EXPECT_EQ(amcr::dominantCluster(m, 0, 20, kPrototypes, kRadius, true).likeliest.prototype, -1);
 }
 
 TEST(DominantCluster, AnEmptyRangeHasNoCluster)

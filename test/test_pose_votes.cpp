@@ -86,12 +86,12 @@ TEST_P(TruePose, IsAmongTheFirstPools)
       found = k;
   }
   std::cout << "[ votes    ] scale " << scale << ": the true pose is pool " << found << " of " << pools.size()
-            << (found >= 0 ? " with " + std::to_string(pools[found].votes) + " votes" : std::string()) << "\n";
+            << (found >= 0 ? " with " + std::to_string(pools[found].places.size()) + " votes" : std::string()) << "\n";
   EXPECT_TRUE(found >= 0 && found < kFirstPools) << "scale " << scale << ": the arrow's pose is not among the first " << kFirstPools
-                      << " pools (first: prototype " << pools[0].prototype << ", " << pools[0].votes << " votes)";
+                      << " pools (first: prototype " << pools[0].prototype << ", " << pools[0].places.size() << " votes)";
   if (found >= 0)
   {
-    EXPECT_GE(pools[found].votes, 2) << "one place alone is no pool";
+    EXPECT_GE(pools[found].places.size(), 2u) << "one place alone is no pool";
   }
 }
 

@@ -35,7 +35,8 @@ struct VParticleCluster
   /// cluster_min_share; everything after reads this.
   bool converged = false;
   /// The mode about the most likely M-particle (result extraction: a fit
-  /// starts there for the most likely V-particles that have not converged).
+  /// starts there for the most likely V-particles that have not converged);
+  /// found only when params.likeliest_fits asks for it.
   LikeliestMode likeliest;
 };
 
@@ -43,8 +44,10 @@ struct VParticleCluster
 /// `radius` table px from the most likely particle of each prototype, most
 /// populated prototype first, keeping the mode with the most members (a tight
 /// cluster in one prototype wins over more particles spread over another).
+/// With `with_likeliest`, also the mode about the most likely particle
+/// (VParticleCluster::likeliest), which only likeliest_fits reads.
 VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
-                                 double radius);
+                                 double radius, bool with_likeliest = false);
 
 /// The dominant cluster of every V-particle (index = V index) of `v`, whose
 /// M-particles in `m` are `ranges` (one per V-particle): of radius

@@ -36,8 +36,7 @@ struct PoseVote
 {
   int prototype = -1;
   Affine table_to_image;  ///< the pose of the pool's closest match (table px -> working px)
-  int votes = 0;          ///< places that voted for it
-  std::vector<int> places;  ///< which (indices into the places voting)
+  std::vector<int> places;  ///< the places that voted for it (indices into the places voting)
   float distance = 0.f;   ///< the closest match's descriptor distance
 };
 

@@ -22,7 +22,7 @@
 namespace amcr
 {
 /// The turns tried: multiples of 60 and 90 degrees about the model's centre
-/// in its whitened frame (the symmetries of triangles, squares and hexagons).
+/// (the symmetries of triangles, squares and hexagons).
 constexpr int kTurnDegrees[] = {60, 90, 120, 180, 240, 270, 300};
 
 /// Table -> table affine of `prototype` turned by `degrees` about its model

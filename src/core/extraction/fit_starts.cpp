@@ -66,17 +66,13 @@ std::vector<FitStart> lookAlikeStarts(const ExtractionInput& in, const std::vect
   return starts;
 }
 
-/// Whether V-particle `v` lies inside a tracked object's outline (in the
-/// previous frame's pose: the flow moved both alike).
-bool onTrack(const std::vector<Track>& tracks, const VParticle& v)
+/// Whether V-particle `v` lies inside one of `outlines` (the tracked objects'
+/// in the previous frame's pose: the flow moved both alike).
+bool insideAny(const std::vector<std::vector<cv::Point2f>>& outlines, const VParticle& v)
 {
-  for (const Track& t : tracks)
-  {
-    const std::vector<cv::Point2d>& outline = t.object.outline;
-    if (outline.size() >= 3 &&
-        cv::pointPolygonTest(std::vector<cv::Point2f>(outline.begin(), outline.end()), cv::Point2f(v.x, v.y), false) >= 0)
+  for (const std::vector<cv::Point2f>& outline : outlines)
+    if (outline.size() >= 3 && cv::pointPolygonTest(outline, cv::Point2f(v.x, v.y), false) >= 0)
       return true;
-  }
   return false;
 }
 
@@ -139,10 +135,13 @@ void addVoteStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
 {
   if (!in.index || in.params.pose_vote_fits <= 0)
     return;
+  std::vector<std::vector<cv::Point2f>> outlines;
+  for (const Track& t : tracks)
+    outlines.emplace_back(t.object.outline.begin(), t.object.outline.end());
   std::vector<RayPlace> places;
   std::vector<int> place_v;  // the V-particle of each place
   for (const VParticleCluster& c : in.clusters)
-    if (!c.converged && !onTrack(tracks, in.v_particles[c.v]))
+    if (!c.converged && !insideAny(outlines, in.v_particles[c.v]))
     {
       places.push_back({in.v_particles[c.v].x, in.v_particles[c.v].y, in.v_particles[c.v].theta});
       place_v.push_back(c.v);

@@ -76,7 +76,7 @@ bool meanAffine(const MParticleSet& m, std::size_t begin, std::size_t end, int k
 }  // namespace
 
 VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::size_t end, int prototype_count,
-                                 double radius)
+                                 double radius, bool with_likeliest)
 {
   VParticleCluster cluster;
   if (end <= begin || prototype_count <= 0)
@@ -126,7 +126,7 @@ VParticleCluster dominantCluster(const MParticleSet& m, std::size_t begin, std::
   // with a likelihood that hardly tells prototypes apart, the truth is often
   // the most likely hypothesis long before its mode is the densest.
   int top = -1;
-  for (int candidate = 0; candidate < prototype_count; ++candidate)
+  for (int candidate = 0; with_likeliest && candidate < prototype_count; ++candidate)
     if (most_likely[candidate] != end &&
         (top < 0 || m.log_likelihood[most_likely[candidate]] > m.log_likelihood[most_likely[top]]))
       top = candidate;
@@ -150,7 +150,8 @@ std::vector<VParticleCluster> dominantClusters(const std::vector<VParticle>& v, 
   std::vector<VParticleCluster> clusters(v.size());
   for (std::size_t i = 0; i < v.size(); ++i)
   {
-    clusters[i] = dominantCluster(m, ranges[i].begin, ranges[i].end, prototype_count, params.cluster_radius);
+    clusters[i] = dominantCluster(m, ranges[i].begin, ranges[i].end, prototype_count, params.cluster_radius,
+                                  params.likeliest_fits > 0);
     clusters[i].v = static_cast<int>(i);
     clusters[i].converged = clusters[i].share >= params.cluster_min_share;
   }

@@ -53,6 +53,7 @@ std::vector<PoseVote> poolPoseVotes(const ProposalIndex& index, const PrototypeM
                                     int per_place)
 {
   std::vector<Vote> votes;
+  std::vector<int> longer_side(memory.size(), 0);  // each prototype's region's longer side, table px (0: not yet)
   for (std::size_t i = 0; i < places.size(); ++i)
   {
     const RayPlace& place = places[i];
@@ -65,8 +66,12 @@ std::vector<PoseVote> poolPoseVotes(const ProposalIndex& index, const PrototypeM
              c.distance, 0.0};
       v.centre = applyAffine(v.pose, p.centre());
       v.turn = place.theta - binToAngle(c.bin);
-      const cv::Rect box = cv::boundingRect(p.mask());
-      v.size = std::exp(v.log_scale) * std::max(box.width, box.height);
+      if (longer_side[c.prototype] == 0)
+      {
+        const cv::Rect box = cv::boundingRect(p.mask());
+        longer_side[c.prototype] = std::max(1, std::max(box.width, box.height));
+      }
+      v.size = std::exp(v.log_scale) * longer_side[c.prototype];
       votes.push_back(v);
     }
   }
@@ -96,10 +101,9 @@ std::vector<PoseVote> poolPoseVotes(const ProposalIndex& index, const PrototypeM
   }
   std::vector<PoseVote> out;
   for (const Pool& pool : pools)
-    out.push_back(
-        {pool.seed->prototype, pool.seed->pose, static_cast<int>(pool.places.size()), pool.places, pool.seed->distance});
+    out.push_back({pool.seed->prototype, pool.seed->pose, pool.places, pool.seed->distance});
   std::stable_sort(out.begin(), out.end(), [](const PoseVote& a, const PoseVote& b) {
-    return a.votes != b.votes ? a.votes > b.votes : a.distance < b.distance;
+    return a.places.size() != b.places.size() ? a.places.size() > b.places.size() : a.distance < b.distance;
   });
   return out;
 }
