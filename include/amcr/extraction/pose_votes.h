@@ -17,20 +17,13 @@
 #include <opencv2/core.hpp>
 
 #include "amcr/base/affine.h"
+#include "amcr/filter/particles.h"
 #include "amcr/filter/proposal_index.h"
 #include "amcr/memory/prototype_memory.h"
 #include "amcr/scan/radial_scan.h"
 
 namespace amcr
 {
-/// A place of the image the rays are read at: position (working px) and heading (rad).
-struct RayPlace
-{
-  float x = 0.f;
-  float y = 0.f;
-  float theta = 0.f;
-};
-
 /// One pool of agreeing votes.
 struct PoseVote
 {

@@ -20,6 +20,14 @@ struct RaySignature
   int valid_rays() const;
 };
 
+/// A place of the image the feature rays are read at: position (px) and heading (rad).
+struct RayPlace
+{
+  float x = 0.f;
+  float y = 0.f;
+  float theta = 0.f;
+};
+
 /// Scans the 8 feature rays of the pose (x, y, theta): theta + k * 45 deg.
 void scanFeatureRays(const RadialScanner& scanner, float x, float y, float theta, RayHit hits[kFeatureRays]);
 
