@@ -8,6 +8,7 @@
 //     amcr::RecognitionResult result = recognizer.step(frame);
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -118,6 +119,7 @@ private:
   /// Returns the share of an iteration run; `round_done` tells whether the
   /// round ended.
   double runUpdates(const RadialScanner& scanner, double frame_start, bool& round_done);
+  std::vector<RayPlace> coverageOfFrame(cv::Size working_size, double min_object_size);
   /// Moves the V-particles by the optical flow; returns how many were lost.
   int followFlow(const RadialScanner& scanner);
 
@@ -127,6 +129,7 @@ private:
   FrameBudget budget_;
   long iteration_ = 0;
   int next_v_ = 0;  // the V-particle the current round goes on with (frame budget)
+  std::int64_t coverage_frame_ = 0;  // frames since the coverage lattice started over (coverage_schedule.h)
   std::vector<FlowTrail> trails_;  // per V-particle, of the last step's flow (empty: none), working px
   WorkingScale scale_;             // of the last step (empty sizes before the first)
   std::vector<RecognizedObject> verified_;  // of the last step, input px

@@ -5,6 +5,7 @@
 
 #include "amcr/base/parallel_for.h"
 #include "amcr/base/resource_bounds.h"
+#include "amcr/extraction/coverage_schedule.h"
 #include "amcr/extraction/object_extractor.h"
 #include "amcr/filter/discriminative_attention.h"
 #include "amcr/scan/radial_scan.h"
@@ -88,6 +89,7 @@ void Recognizer::reset()
   verified_.clear();
   iteration_ = 0;
   next_v_ = 0;
+  coverage_frame_ = 0;
 }
 
 RecognitionResult Recognizer::step(const cv::Mat& image)
@@ -117,6 +119,7 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
     filter_.seed(scanner);
     tracker_.clearTracks();
     next_v_ = 0;
+    coverage_frame_ = 0;
   }
   trails_.clear();
   if (params_.optical_flow)
@@ -139,8 +142,10 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   // min_object_size is in input px (what a user measures in the image).
   ExtractionParams extraction_params = params_;
   extraction_params.min_object_size = params_.min_object_size * scale_.factor();
+  ExtractionAids aids;
+  aids.image_places = coverageOfFrame(scan_image.size(), extraction_params.min_object_size);
   Extraction extraction = extractObjects(readFilter(filter_), scanner, tracker_.tracks(), extraction_params,
-                                         params_.max_affine_scale, params_.num_threads);
+                                         params_.max_affine_scale, params_.num_threads, aids);
   filter_.addEvidence(extraction.feedback.evidence);
   filter_.setLeading(std::move(extraction.feedback.leading));
   for (const VParticleCluster& c : extraction.clusters)
@@ -155,7 +160,8 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   tracker_.assign(result.objects, scan_image.size(), result.lost);  // the tracks stay in working px, as the filter
   filter_.setHeldObjects(heldObjects(result.objects, extraction.feedback.object_v_particles));
   if (round_done && iteration_ % params_.v_resample_interval == 0)
-    trails_ = inherit(trails_, filter_.resampleV(scanner, extraction.feedback.object_v_particles));
+    trails_ = inherit(trails_, filter_.resampleV(scanner, extraction.feedback.object_v_particles,
+                                                 extraction.feedback.seed_places));
   if (!scale_.identity())
   {
     scaleResult(result, scale_.toInput());
@@ -171,6 +177,19 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   result.times.extraction_ms = end - extraction_start;
   result.time_ms = end - start;
   return result;
+}
+
+// The frame's share of the coverage lattice (coverage_schedule.h), outside
+// the tracked objects; none unless the pose votes and the lattice are on.
+std::vector<RayPlace> Recognizer::coverageOfFrame(cv::Size working_size, double min_object_size)
+{
+  if (params_.pose_vote_fits <= 0 || params_.coverage_frames <= 0)
+    return {};
+  std::vector<std::vector<cv::Point2f>> held;
+  for (const Track& t : tracker_.tracks().tracks())
+    held.emplace_back(t.object.outline.begin(), t.object.outline.end());
+  return coveragePlaces(working_size, coverageSpacing(min_object_size), params_.coverage_frames, coverage_frame_++,
+                        held);
 }
 
 // Under a frame budget a round over the V-particles spans frames (the paper

@@ -38,6 +38,10 @@ struct ExtractionFeedback
   /// For each reported object (same order as Extraction::objects), the V
   /// indices of the V-particles that support it.
   std::vector<std::vector<int>> object_v_particles;
+  /// Places of the image's coverage lattice whose votes started a fit that
+  /// could lead (coverage_schedule.h), best fit first: the next V-resampling
+  /// seeds V-particles there, which the leading hypotheses' injection meets.
+  std::vector<RayPlace> seed_places;
 };
 
 struct Extraction
@@ -69,6 +73,14 @@ struct FilterReading
   const ProposalIndex* index = nullptr;     ///< the memory's proposal index (pose votes); null: none
 };
 
+/// What the extraction may use besides the filter.
+struct ExtractionAids
+{
+  /// The frame's places of the coverage lattice (coverage_schedule.h): they
+  /// vote for poses besides the V-particles when pose_vote_fits is on.
+  std::vector<RayPlace> image_places;
+};
+
 /// The dominant cluster of each of the filter's V-particles (index = V index),
 /// as the extraction defines it.
 std::vector<VParticleCluster> filterClusters(const ParticleFilter& filter);
@@ -82,5 +94,6 @@ FilterReading readFilter(const ParticleFilter& filter);
 /// image), min_object_size included; `max_affine_scale` (ObservationParams)
 /// bounds the fits' scale and `num_threads` (RunParams) is their threads.
 Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, const TrackRegistry& tracks,
-                          const ExtractionParams& params, double max_affine_scale, int num_threads);
+                          const ExtractionParams& params, double max_affine_scale, int num_threads,
+                          const ExtractionAids& aids = {});
 }  // namespace amcr

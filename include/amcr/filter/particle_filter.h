@@ -112,9 +112,13 @@ public:
   /// V-resampling (paper 3.6, every w iterations): draws V-particles by their
   /// evidence, with the weight of each reported object's V-particles
   /// (`object_v_particles`, V indices) shared beyond a number per object.
+  /// The V-particles seeded afresh start at `seed_places` first, one each in
+  /// slot order (the image's candidates, coverage_schedule.h), the rest at
+  /// random (ParticleSeeder); their M-particles are seeded alike either way.
   /// Returns the ancestry: for each new V-particle the index of the one it
   /// copies, or -1 when it was seeded afresh.
-  std::vector<int> resampleV(const RadialScanner& scanner, const std::vector<std::vector<int>>& object_v_particles);
+  std::vector<int> resampleV(const RadialScanner& scanner, const std::vector<std::vector<int>>& object_v_particles,
+                             const std::vector<RayPlace>& seed_places = {});
 
   /// The objects held in this frame (track_registry.h), replacing the last
   /// ones: no V-particle is seeded inside the convex hull of a held object's

@@ -50,6 +50,11 @@ public:
   /// [begin, end) of `set`, their prototypes from the prior slots.
   void seedVAndM(VParticle& v, MParticleSet& set, std::size_t begin, std::size_t end, const RadialScanner& scanner,
                  const SeedingScene& scene, VWorkspace& work) const;
+  /// The same with the V-particle at `place` (an image candidate's place):
+  /// only where the V-particle starts differs, its M-particles are seeded
+  /// and weighted as seedVAndM's.
+  void seedVAndMAt(const RayPlace& place, VParticle& v, MParticleSet& set, std::size_t begin, std::size_t end,
+                   const RadialScanner& scanner, const SeedingScene& scene, VWorkspace& work) const;
   /// A new M-particle at `index` of `set`: with probability index_share
   /// (when work.candidates holds places) at one of them, else uniformly in
   /// `prototype` as in the paper; with the importance weight of the mixture.
@@ -71,6 +76,9 @@ private:
   std::vector<ProposalCandidate> frontalCandidates(const VParticle& v, const RadialScanner& scanner,
                                                    const FilterMemory& memory, int count) const;
   void seedV(VParticle& v, const RadialScanner& scanner, const SeedingScene& scene, Rng& rng) const;
+  /// The M-particles of a V-particle just placed, in [begin, end) of `set`.
+  void seedMOf(const VParticle& v, MParticleSet& set, std::size_t begin, std::size_t end, const RadialScanner& scanner,
+               const SeedingScene& scene, VWorkspace& work) const;
   void seedUniform(MParticleSet& set, std::size_t index, int prototype, const VParticle& v,
                    const PrototypeMemory& memory, Rng& rng) const;
   void seedAtCandidate(MParticleSet& set, std::size_t index, const ProposalCandidate& c,

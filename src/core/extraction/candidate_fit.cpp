@@ -218,6 +218,8 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
       tryTurnedFits(in, fitted[s]);
     if (found[s] && !start.voters.empty())
       addVoterSupport(in, start.voters, fitted[s]);
+    if (found[s])
+      fitted[s].image_places = start.image_places;
   });
   std::vector<Candidate> candidates;
   for (std::size_t s = 0; s < starts.size(); ++s)

@@ -32,6 +32,7 @@ struct Candidate
   Affine table_to_image;         // the fitted affine, table px -> input px
   double score_tolerance = 0.0;  // px: the score's tolerance at the object's size
   bool adopted = false;          // took over a look-alike's V-particles (adoptSupport)
+  std::vector<RayPlace> image_places;  // the image's places that voted for its start (coverage_schedule.h)
 };
 
 /// Where the fit of one prototype starts: a group's affine and the affines
@@ -45,6 +46,8 @@ struct FitStart
   bool tracked = false;
   /// The V-particles whose rays voted for the start's pose (pose_votes.h).
   std::vector<int> voters;
+  /// The places of the image's coverage lattice that voted for it (coverage_schedule.h).
+  std::vector<RayPlace> image_places;
 };
 
 /// The generic rivals of the prototypes the frame's fits start from, by
@@ -64,6 +67,8 @@ struct ExtractionInput
   int num_threads;                     ///< RunParams::num_threads: the fits' and the rival checks' threads
   const RivalTable* rivals = nullptr;  ///< rivalTable() of the frame's starts; none: fitted where needed
   const ProposalIndex* index = nullptr;  ///< the memory's proposal index (pose votes); none: no votes
+  /// The frame's places of the coverage lattice (coverage_schedule.h), which vote besides the V-particles.
+  const std::vector<RayPlace>* image_places = nullptr;
 };
 
 /// Where the fits start: each group of clusters, each tracked object, and

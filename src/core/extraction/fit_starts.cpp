@@ -3,10 +3,12 @@
 // still deciding between, with the look-alikes of each tracked prototype.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
 #include "amcr/filter/discriminative_attention.h"
+#include "amcr/extraction/outline_edges.h"
 #include "amcr/extraction/pose_votes.h"
 #include "amcr/filter/discriminative_places.h"
 #include "extraction_steps.h"
@@ -20,6 +22,7 @@ namespace
 constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
 constexpr double kTrackDistance = 40.0;            // px an object's centre may move between frames and keep its track
 constexpr int kVotesPerPlace = 3;                   // the index's nearest matches each V-particle's rays vote for
+constexpr std::size_t kScreenedPools = 32;          // vote pools looked at on the image per frame (screenPose)
 
 /// Whether a start of `prototype` begins near `centre` (image px).
 bool startedNear(const ExtractionInput& in, const std::vector<FitStart>& starts, int prototype,
@@ -61,7 +64,7 @@ std::vector<FitStart> lookAlikeStarts(const ExtractionInput& in, const std::vect
     {
       Affine b_to_a;
       if (invertAffine(pair->a_to_b, b_to_a))
-        starts.push_back({pair->b, {composeAffine(b_to_a, track_affines[k])}, false, {}});
+        starts.push_back({pair->b, {composeAffine(b_to_a, track_affines[k])}, false, {}, {}});
     }
   return starts;
 }
@@ -120,16 +123,18 @@ void addLikeliestStarts(const ExtractionInput& in, const std::vector<Track>& tra
     const cv::Point2d centre = applyAffine(table_to_image, in.memory[prototype].centre());
     if (nearTrack(in, tracks, track_affines, centre) || startedNear(in, starts, prototype, centre))
       continue;
-    starts.push_back({prototype, {table_to_image}, false, {}});
+    starts.push_back({prototype, {table_to_image}, false, {}, {}});
     ++added;
   }
 }
 
 // Poses the image proposes (pose_votes.h): the rays where each V-particle
-// that has not converged stands, looked up in the proposal index, pooled by
+// that has not converged stands, and at the frame's places of the coverage
+// lattice (coverage_schedule.h), looked up in the proposal index, pooled by
 // prototype and pose; the pools with most votes are fitted, up to
-// pose_vote_fits per frame (V-particles on a tracked object do not vote; no
-// pool near a tracked object or where a start of its prototype is).
+// pose_vote_fits per frame (V-particles on a tracked object do not vote, the
+// lattice skips held objects; no pool near a tracked object or where a start
+// of its prototype is).
 void addVoteStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
                    const std::vector<Affine>& track_affines, std::vector<FitStart>& starts)
 {
@@ -139,24 +144,58 @@ void addVoteStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
   for (const Track& t : tracks)
     outlines.emplace_back(t.object.outline.begin(), t.object.outline.end());
   std::vector<RayPlace> places;
-  std::vector<int> place_v;  // the V-particle of each place
+  std::vector<int> place_v;  // the V-particle of each place; -1 for the lattice's
   for (const VParticleCluster& c : in.clusters)
     if (!c.converged && !insideAny(outlines, in.v_particles[c.v]))
     {
       places.push_back({in.v_particles[c.v].x, in.v_particles[c.v].y, in.v_particles[c.v].theta});
       place_v.push_back(c.v);
     }
-  int added = 0;
-  for (const PoseVote& vote : poolPoseVotes(*in.index, in.memory, in.scanner, places, kVotesPerPlace))
+  if (in.image_places)
+    for (const RayPlace& place : *in.image_places)
+    {
+      places.push_back(place);
+      place_v.push_back(-1);
+    }
+  // The pools with most votes are also looked at on the image as they stand
+  // (screenPose): the fits go in turn to the pool with most votes and to
+  // the one whose outline meets the image's edges best. The votes alone
+  // favour a prototype whose places many rays match; the edges alone favour
+  // a pose on dense clutter; each finds what the other misses.
+  const std::vector<PoseVote> pools = poolPoseVotes(*in.index, in.memory, in.scanner, places, kVotesPerPlace);
+  std::vector<const PoseVote*> by_votes;
+  std::vector<std::pair<double, const PoseVote*>> by_edges;
+  for (const PoseVote& vote : pools)
   {
-    if (added >= in.params.pose_vote_fits)
+    if (by_votes.size() >= kScreenedPools)
       break;
     const cv::Point2d centre = applyAffine(vote.table_to_image, in.memory[vote.prototype].centre());
     if (nearTrack(in, tracks, track_affines, centre) || startedNear(in, starts, vote.prototype, centre))
       continue;
-    FitStart start{vote.prototype, {vote.table_to_image}, false, {}};
+    by_votes.push_back(&vote);
+    by_edges.emplace_back(screenPose(in.memory[vote.prototype], in.scanner, vote.table_to_image,
+                                     in.params.refine_search),
+                          &vote);
+  }
+  std::stable_sort(by_edges.begin(), by_edges.end(),
+                   [](const std::pair<double, const PoseVote*>& a, const std::pair<double, const PoseVote*>& b) {
+                     return a.first > b.first;
+                   });
+  int added = 0;
+  for (std::size_t k = 0; k < 2 * by_votes.size() && added < in.params.pose_vote_fits; ++k)
+  {
+    const PoseVote& vote = k % 2 == 0 ? *by_votes[k / 2] : *by_edges[k / 2].second;
+    const cv::Point2d centre = applyAffine(vote.table_to_image, in.memory[vote.prototype].centre());
+    if (startedNear(in, starts, vote.prototype, centre))
+      continue;  // fitted already, or a pool of its prototype starts there
+    FitStart start{vote.prototype, {vote.table_to_image}, false, {}, {}};
     for (int place : vote.places)
-      start.voters.push_back(place_v[place]);
+    {
+      if (place_v[place] >= 0)
+        start.voters.push_back(place_v[place]);
+      else
+        start.image_places.push_back(places[place]);
+    }
     starts.push_back(std::move(start));
     ++added;
   }
@@ -192,7 +231,7 @@ void addCompetingStarts(const ExtractionInput& in, const std::vector<Track>& tra
       Affine table_to_image;
       if (h.prototype == v.competing.hypothesis[0].prototype || !hypothesisTableToImage(h, table_to_image))
         continue;
-      alternatives.push_back({h.share, {h.prototype, {table_to_image}, false, {}}});
+      alternatives.push_back({h.share, {h.prototype, {table_to_image}, false, {}, {}}});
     }
   std::stable_sort(alternatives.begin(), alternatives.end(),
                    [](const Alternative& a, const Alternative& b) { return a.share > b.share; });
@@ -260,7 +299,7 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   std::vector<bool> track_used(tracks.size(), false);
   for (const GroupStart& g : groups)
   {
-    FitStart start{g.group->prototype, {g.group->table_to_image}, !g.near.empty(), {}};
+    FitStart start{g.group->prototype, {g.group->table_to_image}, !g.near.empty(), {}, {}};
     for (std::size_t k : g.near)
     {
       start.affines.push_back(track_affines[k]);
@@ -270,7 +309,7 @@ std::vector<FitStart> fitStarts(const ExtractionInput& in, const TrackRegistry& 
   }
   for (std::size_t k = 0; k < tracks.size(); ++k)
     if (!track_used[k])
-      starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}, true, {}});
+      starts.push_back({tracks[k].object.prototype_id, {track_affines[k]}, true, {}, {}});
   addLikeliestStarts(in, tracks, track_affines, starts);
   addVoteStarts(in, tracks, track_affines, starts);
   addCompetingStarts(in, tracks, track_affines, starts);

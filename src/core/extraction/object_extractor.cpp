@@ -21,6 +21,7 @@ namespace
 constexpr int kMaxLeadingHypotheses = 3;           // hypotheses whose poses are injected as M-particles
 constexpr double kVerificationGain = 4.0;          // log-weight per unit of outline score above 0.5 (V-resampling)
 constexpr double kLeadingScoreRatio = 0.5;         // a leading hypothesis scores at least this share of the threshold
+constexpr std::size_t kMaxSeedPlaces = 12;         // places of the image's candidates V-resampling seeds at
 
 // Attention feedback from the verification: a converged V-particle whose
 // interpretation the whole outline confirms gains V-weight, one whose
@@ -69,6 +70,25 @@ std::vector<LeadingHypothesis> leadingHypotheses(const ExtractionInput& in, cons
     leading.push_back({c.prototype_id, composeAffine(c.image_to_prototype, p.originalToTable())});
   }
   return leading;
+}
+
+/// The coverage lattice's places that voted for a fit that could lead, best
+/// fit first, outside tracked objects (their V-particles are there already).
+std::vector<RayPlace> seedPlaces(const ExtractionInput& in, const TrackRegistry& registry,
+                                 const std::vector<Candidate>& candidates)
+{
+  std::vector<RayPlace> places;
+  for (const Candidate& candidate : candidates)
+  {
+    if (candidate.object.score < kLeadingScoreRatio * in.params.decision_threshold)
+      break;
+    if (registry.continued(candidate.object))
+      continue;
+    for (const RayPlace& place : candidate.image_places)
+      if (places.size() < kMaxSeedPlaces)
+        places.push_back(place);
+  }
+  return places;
 }
 
 /// Reports what passes the decision threshold; of two overlapping objects
@@ -131,7 +151,8 @@ FilterReading readFilter(const ParticleFilter& filter)
 }
 
 Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, const TrackRegistry& tracks,
-                          const ExtractionParams& params, double max_affine_scale, int num_threads)
+                          const ExtractionParams& params, double max_affine_scale, int num_threads,
+                          const ExtractionAids& aids)
 {
   Extraction extraction;
   extraction.clusters = std::move(filter.clusters);
@@ -139,6 +160,7 @@ Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, co
   ExtractionInput plain{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory,
                         max_affine_scale, num_threads};
   plain.index = filter.index;
+  plain.image_places = &aids.image_places;
   const std::vector<FitStart> starts = fitStarts(plain, tracks);
   // The generic rivals of the prototypes fitted in this frame, once each.
   const RivalTable rivals = rivalTable(plain, starts);
@@ -150,6 +172,7 @@ Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, co
     adoptSupport(in, candidates);
   extraction.feedback.evidence = verificationEvidence(in, candidates);
   extraction.feedback.leading = leadingHypotheses(in, candidates);
+  extraction.feedback.seed_places = seedPlaces(in, tracks, candidates);
   for (const Candidate& candidate : candidates)
     extraction.verified.push_back(candidate.object);
   report(in.params, tracks, candidates, extraction);

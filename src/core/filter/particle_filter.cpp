@@ -206,7 +206,8 @@ void ParticleFilter::addEvidence(const std::vector<EvidenceBonus>& evidence)
 // V-resampling: the Resampler draws the next generation, the filter copies it
 
 std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
-                                           const std::vector<std::vector<int>>& object_v_particles)
+                                           const std::vector<std::vector<int>>& object_v_particles,
+                                           const std::vector<RayPlace>& seed_places)
 {
   const int n = static_cast<int>(v_.size());
   const std::size_t per_v = static_cast<std::size_t>(mParticlesPerV());
@@ -217,12 +218,21 @@ std::vector<int> ParticleFilter::resampleV(const RadialScanner& scanner,
   // own, with its own stream.
   std::vector<VParticle> next(n);
   std::vector<int> next_count(n, static_cast<int>(per_v));
+  // The j-th slot seeded afresh starts at seed_places[j] while there are any.
+  std::vector<int> place_of(n, -1);
+  std::size_t places_given = 0;
+  for (int k = 0; k < n && places_given < seed_places.size(); ++k)
+    if (generation.source[k] < 0)
+      place_of[k] = static_cast<int>(places_given++);
   parallelFor(n, resolveThreads(params().num_threads), [&](int k) {
     const int from = generation.source[k];
     const std::size_t begin = static_cast<std::size_t>(k) * per_v, end = begin + per_v;
     if (from < 0)
     {
-      seeder_.seedVAndM(next[k], next_m, begin, end, scanner, scene, work_[k]);
+      if (place_of[k] >= 0)
+        seeder_.seedVAndMAt(seed_places[place_of[k]], next[k], next_m, begin, end, scanner, scene, work_[k]);
+      else
+        seeder_.seedVAndM(next[k], next_m, begin, end, scanner, scene, work_[k]);
       return;
     }
     next[k] = v_[from];

@@ -37,6 +37,26 @@ void ParticleSeeder::seedVAndM(VParticle& v, MParticleSet& set, std::size_t begi
                                const RadialScanner& scanner, const SeedingScene& scene, VWorkspace& work) const
 {
   seedV(v, scanner, scene, work.rng);
+  seedMOf(v, set, begin, end, scanner, scene, work);
+}
+
+void ParticleSeeder::seedVAndMAt(const RayPlace& place, VParticle& v, MParticleSet& set, std::size_t begin,
+                                 std::size_t end, const RadialScanner& scanner, const SeedingScene& scene,
+                                 VWorkspace& work) const
+{
+  RayHit hits[kFeatureRays];
+  scanFeatureRays(scanner, place.x, place.y, place.theta, hits);
+  v = VParticle();
+  v.x = place.x;
+  v.y = place.y;
+  v.theta = place.theta;
+  v.rays = raySignature(hits);
+  seedMOf(v, set, begin, end, scanner, scene, work);
+}
+
+void ParticleSeeder::seedMOf(const VParticle& v, MParticleSet& set, std::size_t begin, std::size_t end,
+                             const RadialScanner& scanner, const SeedingScene& scene, VWorkspace& work) const
+{
   findCandidates(v, scanner, scene.memory, work);
   const std::vector<int>& slots = scene.memory.prior().slots();
   for (std::size_t j = 0; j < end - begin; ++j)
