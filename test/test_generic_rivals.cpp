@@ -14,6 +14,7 @@
 #include "amcr/extraction/generic_rivals.h"
 #include "amcr/extraction/homography_fit.h"
 #include "amcr/extraction/outline_fit.h"
+#include "amcr/extraction/rival_cache.h"
 #include "amcr/memory/prototype_memory.h"
 #include "scene_drawing.h"
 
@@ -80,6 +81,37 @@ Check check(const std::string& label, const cv::Mat& prototype_image, const cv::
                                           kApart, kMinPoints);
   out.score = amcr::outlineSupport(p, scanner, table_to_image, kTolerance);
   return out;
+}
+
+// The rivals depend on the prototype alone: the cache fits each once, gives
+// what genericRivals gives, and starts over for another memory.
+TEST(RivalCache, FitsEachPrototypeOnceAndStartsOverForAnotherMemory)
+{
+  const auto memory = amcr_test::drawnMemory({amcr_test::ShapeId::kArrow, amcr_test::ShapeId::kStar});
+  amcr::RivalCache cache;
+  EXPECT_FALSE(cache.has(0));
+  cache.fit(*memory, {1, 1, 7, -1}, 2);  // twice, out of range: fitted once, the rest ignored
+  EXPECT_FALSE(cache.has(0));
+  ASSERT_TRUE(cache.has(1));
+  EXPECT_EQ(cache.fitted(), 1u);
+  const std::vector<amcr::GenericRival> direct = amcr::genericRivals((*memory)[1]);
+  ASSERT_EQ(cache.rivals(1).size(), direct.size());
+  ASSERT_FALSE(direct.empty());
+  for (std::size_t k = 0; k < direct.size(); ++k)
+  {
+    EXPECT_EQ(cache.rivals(1)[k].kind, direct[k].kind);
+    EXPECT_EQ(cache.rivals(1)[k].points, direct[k].points);
+  }
+  cache.fit(*memory, {0}, 1);
+  EXPECT_EQ(cache.fitted(), 2u);
+  const auto larger = amcr_test::drawnMemory(
+      {amcr_test::ShapeId::kArrow, amcr_test::ShapeId::kStar, amcr_test::ShapeId::kFlag});
+  cache.fit(*larger, {2}, 1);  // another memory's size: what was fitted for the other is gone
+  EXPECT_FALSE(cache.has(0));
+  EXPECT_TRUE(cache.has(2));
+  cache.clear();
+  EXPECT_EQ(cache.fitted(), 0u);
+  EXPECT_TRUE(cache.rivals(2).empty());
 }
 }  // namespace
 

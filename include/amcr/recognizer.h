@@ -17,6 +17,7 @@
 #include "amcr/base/params.h"
 #include "amcr/extraction/flow_tracker.h"
 #include "amcr/extraction/recognition_result.h"
+#include "amcr/extraction/rival_cache.h"
 #include "amcr/filter/exploration_policy.h"
 #include "amcr/filter/filter_memory.h"
 #include "amcr/filter/filter_view.h"
@@ -130,6 +131,7 @@ private:
   long iteration_ = 0;
   int next_v_ = 0;  // the V-particle the current round goes on with (frame budget)
   std::int64_t coverage_frame_ = 0;  // frames since the coverage lattice started over (coverage_schedule.h)
+  RivalCache rivals_;  // the generic rivals of the memory's prototypes, fitted as fits need them
   std::vector<FlowTrail> trails_;  // per V-particle, of the last step's flow (empty: none), working px
   WorkingScale scale_;             // of the last step (empty sizes before the first)
   std::vector<RecognizedObject> verified_;  // of the last step, input px

@@ -76,9 +76,14 @@ FilterMemory Recognizer::setMemory(FilterMemory memory)
 void Recognizer::extendMemory(std::shared_ptr<const PrototypeMemory> memory)
 {
   filter_.extendMemory(std::move(memory));
+  rivals_.clear();
 }
 
-FilterMemory Recognizer::extendMemory(FilterMemory memory) { return filter_.extendMemory(std::move(memory)); }
+FilterMemory Recognizer::extendMemory(FilterMemory memory)
+{
+  rivals_.clear();
+  return filter_.extendMemory(std::move(memory));
+}
 
 void Recognizer::reset()
 {
@@ -90,6 +95,7 @@ void Recognizer::reset()
   iteration_ = 0;
   next_v_ = 0;
   coverage_frame_ = 0;
+  rivals_.clear();  // the memory may have changed (setMemory)
 }
 
 RecognitionResult Recognizer::step(const cv::Mat& image)
@@ -144,6 +150,7 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   extraction_params.min_object_size = params_.min_object_size * scale_.factor();
   ExtractionAids aids;
   aids.image_places = coverageOfFrame(scan_image.size(), extraction_params.min_object_size);
+  aids.rivals = &rivals_;
   Extraction extraction = extractObjects(readFilter(filter_), scanner, tracker_.tracks(), extraction_params,
                                          params_.max_affine_scale, params_.num_threads, aids);
   filter_.addEvidence(extraction.feedback.evidence);

@@ -11,6 +11,7 @@
 
 #include "amcr/extraction/object_extraction.h"
 #include "amcr/extraction/recognition_result.h"
+#include "amcr/extraction/rival_cache.h"
 #include "amcr/extraction/track_registry.h"
 #include "amcr/base/params.h"
 #include "amcr/filter/discriminative_places.h"
@@ -79,6 +80,9 @@ struct ExtractionAids
   /// The frame's places of the coverage lattice (coverage_schedule.h): they
   /// vote for poses besides the V-particles when pose_vote_fits is on.
   std::vector<RayPlace> image_places;
+  /// The generic rivals kept from frame to frame (rival_cache.h); null:
+  /// fitted for this frame alone.
+  RivalCache* rivals = nullptr;
 };
 
 /// The dominant cluster of each of the filter's V-particles (index = V index),

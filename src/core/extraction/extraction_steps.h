@@ -12,6 +12,7 @@
 #include "amcr/extraction/generic_rivals.h"
 #include "amcr/extraction/object_extraction.h"
 #include "amcr/extraction/recognition_result.h"
+#include "amcr/extraction/rival_cache.h"
 #include "amcr/extraction/track_registry.h"
 #include "amcr/filter/discriminative_places.h"
 #include "amcr/filter/particles.h"
@@ -50,9 +51,6 @@ struct FitStart
   std::vector<RayPlace> image_places;
 };
 
-/// The generic rivals of the prototypes the frame's fits start from, by
-/// prototype index (empty for the others), fitted once per frame.
-using RivalTable = std::vector<std::vector<GenericRival>>;
 
 /// What every step of the extraction reads.
 struct ExtractionInput
@@ -65,7 +63,7 @@ struct ExtractionInput
   const PrototypeMemory& memory;
   double max_affine_scale;             ///< of the observation model (ObservationParams): the fits' scale bound
   int num_threads;                     ///< RunParams::num_threads: the fits' and the rival checks' threads
-  const RivalTable* rivals = nullptr;  ///< rivalTable() of the frame's starts; none: fitted where needed
+  const RivalCache* rivals = nullptr;  ///< with the rivals of the frame's starts (fitRivals); none: fitted where needed
   const ProposalIndex* index = nullptr;  ///< the memory's proposal index (pose votes); none: no votes
   /// The frame's places of the coverage lattice (coverage_schedule.h), which vote besides the V-particles.
   const std::vector<RayPlace>* image_places = nullptr;
@@ -84,9 +82,9 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
 /// that could be reported (candidate_fit.cpp).
 void verifyRivals(const ExtractionInput& in, std::vector<Candidate>& candidates);
 
-/// The generic rivals of the starts' prototypes, when the rival check is on
-/// (rival_check.cpp).
-RivalTable rivalTable(const ExtractionInput& in, const std::vector<FitStart>& starts);
+/// Fits into `cache` the generic rivals of the starts' prototypes it does
+/// not hold yet, when the rival check is on (rival_check.cpp).
+void fitRivals(const ExtractionInput& in, const std::vector<FitStart>& starts, RivalCache& cache);
 
 /// The rival check of prototype `prototype` (its index) at a table -> image
 /// transform, with the distinguishing points' search scaled from the

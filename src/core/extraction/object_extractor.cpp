@@ -163,7 +163,9 @@ Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, co
   plain.image_places = &aids.image_places;
   const std::vector<FitStart> starts = fitStarts(plain, tracks);
   // The generic rivals of the prototypes fitted in this frame, once each.
-  const RivalTable rivals = rivalTable(plain, starts);
+  RivalCache frame_rivals;
+  RivalCache& rivals = aids.rivals ? *aids.rivals : frame_rivals;
+  fitRivals(plain, starts, rivals);
   ExtractionInput in = plain;
   in.rivals = &rivals;
   std::vector<Candidate> candidates = fitCandidates(in, starts);

@@ -55,29 +55,25 @@ Affine turnAbout(const cv::Point2d& centre, double angle)
   return Affine(c, -s, centre.x - c * centre.x + s * centre.y, s, c, centre.y - s * centre.x - c * centre.y);
 }
 
-/// The prototype's rivals: from the frame's table, else fitted into `fitted`.
+/// The prototype's rivals: from the cache, else fitted into `fitted`.
 const std::vector<GenericRival>& rivalsOf(const ExtractionInput& in, int prototype,
                                           std::vector<GenericRival>& fitted)
 {
-  if (in.rivals != nullptr && !(*in.rivals)[prototype].empty())
-    return (*in.rivals)[prototype];
+  if (in.rivals != nullptr && in.rivals->has(prototype))
+    return in.rivals->rivals(prototype);
   fitted = genericRivals(in.memory[prototype]);
   return fitted;
 }
 }  // namespace
 
-RivalTable rivalTable(const ExtractionInput& in, const std::vector<FitStart>& starts)
+void fitRivals(const ExtractionInput& in, const std::vector<FitStart>& starts, RivalCache& cache)
 {
-  RivalTable table(in.memory.size());
   if (!(in.params.rival_part_support > 0.0))
-    return table;
+    return;
   std::vector<int> prototypes;
   for (const FitStart& start : starts)
-    if (std::find(prototypes.begin(), prototypes.end(), start.prototype) == prototypes.end())
-      prototypes.push_back(start.prototype);
-  parallelFor(static_cast<int>(prototypes.size()), resolveThreads(in.num_threads),
-              [&](int i) { table[prototypes[i]] = genericRivals(in.memory[prototypes[i]]); });
-  return table;
+    prototypes.push_back(start.prototype);
+  cache.fit(in.memory, prototypes, in.num_threads);
 }
 
 RivalVerdict rivalVerdict(const ExtractionInput& in, int prototype, const Homography& table_to_image,
