@@ -202,10 +202,10 @@ struct ExtractionParams
   /// (and no look-alike pairs are found).
   int competing_fits = 4;
   int likeliest_fits = 0;             ///< unconverged V-particles' likeliest modes fitted per frame; 0 = off
-  int pose_vote_fits = 0;             ///< pools of the image's pose votes fitted per frame; 0 = off
+  int pose_vote_fits = 4;             ///< pools of the image's pose votes fitted per frame; 0 = off
   /// K: frames in which the coverage lattice (coverage_schedule.h) reads the
   /// whole image for pose votes [0, 100]; 0 = the V-particles' places only.
-  int coverage_frames = 0;
+  int coverage_frames = 2;
   double group_tolerance = 8.0;       ///< V-particles agree when they map within this, working px [0.5, 200]
   int min_support = 2;                ///< V-particles an object needs [1, 5000]
   int refine_iterations = 5;          ///< outline-to-edge refinement passes of the affine [0, 100]

@@ -85,7 +85,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(discriminative_min_gain, "nats", 0, 100, "least expected log-likelihood ratio for which a discriminative move is made"),
       AMCR_INT(competing_fits, "", 0, 64, "competing clusters of V-particles, then look-alikes of tracked objects, fitted and verified per frame beside the groups"),
       AMCR_INT(likeliest_fits, "", 0, 64, "modes about the most likely M-particle of V-particles that have not converged, fitted per frame; 0 = off"),
-      AMCR_INT(pose_vote_fits, "", 0, 64, "pools of pose votes (V-particles' rays in the proposal index) fitted per frame; 0 = off"),
+      AMCR_INT(pose_vote_fits, "", 0, 64, "pools of pose votes (the rays of V-particles and of the coverage lattice's places in the proposal index) fitted per frame; 0 = off"),
       AMCR_INT(coverage_frames, "frames", 0, 100, "K: frames in which a lattice of places a third of min_object_size apart covers the image for pose votes; 0 = V-particles only"),
       AMCR_INT(v_resample_interval, "iterations", 1, 1000, "w: V-particles are resampled every w iterations; paper 10"),
       AMCR_DOUBLE(v_reseed_fraction, "", 0, 1, "share of V-particles re-seeded at V-resampling"),
