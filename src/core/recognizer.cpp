@@ -152,7 +152,7 @@ RecognitionResult Recognizer::step(const cv::Mat& image)
   aids.image_places = coverageOfFrame(scan_image.size(), extraction_params.min_object_size);
   aids.rivals = &rivals_;
   Extraction extraction = extractObjects(readFilter(filter_), scanner, tracker_.tracks(), extraction_params,
-                                         params_.max_affine_scale, params_.num_threads, aids);
+                                         params_, params_.num_threads, aids);
   filter_.addEvidence(extraction.feedback.evidence);
   filter_.setLeading(std::move(extraction.feedback.leading));
   for (const VParticleCluster& c : extraction.clusters)

@@ -147,7 +147,7 @@ struct ObservationParams
   double max_affine_scale = 8.0;  ///< largest accepted scale ratio of A (either way) [1, 100]
   RayCorrespondence ray_correspondence = RayCorrespondence::kAffine;
   int affine_refits = 0;          ///< re-estimates of A from affine-corrected triangle rays [0, 5]
-  double max_anisotropy = 3.0;    ///< largest anisotropy of the view shapes new M-particles get [1, 10]; 1 = frontal
+  double max_anisotropy = 3.0;    ///< largest anisotropy of the view shapes new M-particles get, and of a new object reported [1, 10]; 1 = frontal
   double oblique_share = 0.5;     ///< share of new M-particles given an oblique view shape, and of index candidates read under one [0, 1]
 };
 

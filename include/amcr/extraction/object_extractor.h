@@ -95,9 +95,12 @@ FilterReading readFilter(const ParticleFilter& filter);
 /// affine refined on the image's edges and verified against it, and the
 /// report with its hysteresis for tracked objects (spec "Output", "Tracking").
 /// Lengths in `params` are px of the scanned image (the recognizer's working
-/// image), min_object_size included; `max_affine_scale` (ObservationParams)
-/// bounds the fits' scale and `num_threads` (RunParams) is their threads.
+/// image), min_object_size included; `observation` bounds the fits' scale
+/// (max_affine_scale) and the views a new object is reported at
+/// (max_anisotropy: the filter proposes none beyond, and beyond it an affine
+/// stretches a simple outline onto clutter's blobs); `num_threads`
+/// (RunParams) is their threads.
 Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, const TrackRegistry& tracks,
-                          const ExtractionParams& params, double max_affine_scale, int num_threads,
+                          const ExtractionParams& params, const ObservationParams& observation, int num_threads,
                           const ExtractionAids& aids = {});
 }  // namespace amcr

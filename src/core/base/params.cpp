@@ -72,7 +72,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(min_triangle_area, "working px^2", 0, 1e6, "smaller affine triangles are degenerate"),
       AMCR_DOUBLE(max_affine_scale, "", 1, 100, "largest accepted scale of A, either way"),
       AMCR_INT(affine_refits, "", 0, 5, "re-estimates of A from the affine-corrected triangle rays (ray_correspondence affine)"),
-      AMCR_DOUBLE(max_anisotropy, "", 1, 10, "largest anisotropy (singular value ratio; 3 = 70 deg off the normal) of the view shapes new M-particles get (ray_correspondence affine); 1 = frontal only"),
+      AMCR_DOUBLE(max_anisotropy, "", 1, 10, "largest anisotropy (singular value ratio; 3 = 70 deg off the normal) of the view shapes new M-particles get (ray_correspondence affine) and of a new object reported; 1 = frontal only"),
       AMCR_DOUBLE(oblique_share, "", 0, 1, "share of new M-particles given an oblique view shape, and of index candidates read under one; the rest frontal (ray_correspondence affine)"),
       AMCR_DOUBLE(motion_noise_shape, "", 0, 1, "M-particle view-shape noise per iteration, about the change of log anisotropy (ray_correspondence affine)"),
       AMCR_DOUBLE(v_step, "working px", 0, 100, "forward step of a V-particle per iteration"),

@@ -93,9 +93,10 @@ std::vector<RayPlace> seedPlaces(const ExtractionInput& in, const TrackRegistry&
 
 /// Reports what passes the decision threshold; of two overlapping objects
 /// the better one; a new object only while the registry has room
-/// (max_objects), counting those it had none for.
-void report(const ExtractionParams& params, const TrackRegistry& registry, std::vector<Candidate>& candidates,
-            Extraction& extraction)
+/// (max_objects), counting those it had none for, and only when seen within
+/// `max_anisotropy` (a tracked one may turn further).
+void report(const ExtractionParams& params, double max_anisotropy, const TrackRegistry& registry,
+            std::vector<Candidate>& candidates, Extraction& extraction)
 {
   int new_tracks = 0;
   for (auto& candidate : candidates)
@@ -119,7 +120,7 @@ void report(const ExtractionParams& params, const TrackRegistry& registry, std::
     // part blurs them for a while), not for kRivalGraceFrames in a row.
     const bool rivals = track ? (passesRivals(params, candidate, true) || track->rival_misses < kRivalGraceFrames)
                               : passesRivals(params, candidate, false);
-    if (c.score < threshold || c.support < support || !rivals)
+    if (c.score < threshold || c.support < support || !rivals || (!track && c.anisotropy > max_anisotropy))
       continue;
     bool suppressed = false;
     for (const auto& kept : extraction.objects)
@@ -151,14 +152,14 @@ FilterReading readFilter(const ParticleFilter& filter)
 }
 
 Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, const TrackRegistry& tracks,
-                          const ExtractionParams& params, double max_affine_scale, int num_threads,
+                          const ExtractionParams& params, const ObservationParams& observation, int num_threads,
                           const ExtractionAids& aids)
 {
   Extraction extraction;
   extraction.clusters = std::move(filter.clusters);
   const std::vector<VParticle>& v = filter.v_particles;
   ExtractionInput plain{v, extraction.clusters, filter.look_alikes, scanner, params, filter.memory,
-                        max_affine_scale, num_threads};
+                        observation.max_affine_scale, num_threads};
   plain.index = filter.index;
   plain.image_places = &aids.image_places;
   const std::vector<FitStart> starts = fitStarts(plain, tracks);
@@ -177,7 +178,7 @@ Extraction extractObjects(FilterReading filter, const RadialScanner& scanner, co
   extraction.feedback.seed_places = seedPlaces(in, tracks, candidates);
   for (const Candidate& candidate : candidates)
     extraction.verified.push_back(candidate.object);
-  report(in.params, tracks, candidates, extraction);
+  report(in.params, observation.max_anisotropy, tracks, candidates, extraction);
   return extraction;
 }
 }  // namespace amcr
