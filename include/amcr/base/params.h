@@ -202,7 +202,7 @@ struct ExtractionParams
   /// (and no look-alike pairs are found).
   int competing_fits = 4;
   int likeliest_fits = 0;             ///< unconverged V-particles' likeliest modes fitted per frame; 0 = off
-  int pose_vote_fits = 0;             ///< pools of the image's pose votes fitted per frame; 0 = off
+  int pose_vote_fits = 4;             ///< pools of the image's pose votes fitted per frame; 0 = off
   /// K: frames in which the coverage lattice (coverage_schedule.h) reads the
   /// whole image for pose votes [0, 100]; 0 = the V-particles' places only.
   int coverage_frames = 2;

@@ -47,10 +47,4 @@ Affine matchPose(const ProposalCandidate& c, const RayPlace& place);
 std::vector<PoseVote> poolPoseVotes(const ProposalIndex& index, const PrototypeMemory& memory,
                                     const RadialScanner& scanner, const std::vector<RayPlace>& places,
                                     int per_place);
-
-/// A quick look at a voted pose on the image, to choose which pools to fit:
-/// the share of (at most 64, spread) outline points with an edge within
-/// `tolerance` px along their normal (the score's measure, unrefined).
-double screenPose(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
-                  double tolerance);
 }  // namespace amcr

@@ -22,7 +22,6 @@ namespace
 constexpr std::size_t kMaxVerifiedHypotheses = 8;  // groups checked against the image per iteration
 constexpr double kTrackDistance = 40.0;            // px an object's centre may move between frames and keep its track
 constexpr int kVotesPerPlace = 3;                   // the index's nearest matches each V-particle's rays vote for
-constexpr std::size_t kScreenedPools = 32;          // vote pools looked at on the image per frame (screenPose)
 
 /// Whether a start of `prototype` begins near `centre` (image px).
 bool startedNear(const ExtractionInput& in, const std::vector<FitStart>& starts, int prototype,
@@ -157,37 +156,19 @@ void addVoteStarts(const ExtractionInput& in, const std::vector<Track>& tracks,
       places.push_back(place);
       place_v.push_back(-1);
     }
-  // The pools with most votes are also looked at on the image as they stand
-  // (screenPose): the fits go in turn to the pool with most votes and to
-  // the one whose outline meets the image's edges best. The votes alone
-  // favour a prototype whose places many rays match; the edges alone favour
-  // a pose on dense clutter; each finds what the other misses.
+  // The fits go to the pools with most votes. Choosing pools by how well
+  // their outline meets the image's edges as they stand was tried in turn
+  // with the votes: it found more beside few prototypes, fewer beside 70,
+  // and fitted shapes framed by clutter lines (docs/benchmark.md).
   const std::vector<PoseVote> pools = poolPoseVotes(*in.index, in.memory, in.scanner, places, kVotesPerPlace);
-  std::vector<const PoseVote*> by_votes;
-  std::vector<std::pair<double, const PoseVote*>> by_edges;
+  int added = 0;
   for (const PoseVote& vote : pools)
   {
-    if (by_votes.size() >= kScreenedPools)
+    if (added >= in.params.pose_vote_fits)
       break;
     const cv::Point2d centre = applyAffine(vote.table_to_image, in.memory[vote.prototype].centre());
     if (nearTrack(in, tracks, track_affines, centre) || startedNear(in, starts, vote.prototype, centre))
-      continue;
-    by_votes.push_back(&vote);
-    by_edges.emplace_back(screenPose(in.memory[vote.prototype], in.scanner, vote.table_to_image,
-                                     in.params.refine_search),
-                          &vote);
-  }
-  std::stable_sort(by_edges.begin(), by_edges.end(),
-                   [](const std::pair<double, const PoseVote*>& a, const std::pair<double, const PoseVote*>& b) {
-                     return a.first > b.first;
-                   });
-  int added = 0;
-  for (std::size_t k = 0; k < 2 * by_votes.size() && added < in.params.pose_vote_fits; ++k)
-  {
-    const PoseVote& vote = k % 2 == 0 ? *by_votes[k / 2] : *by_edges[k / 2].second;
-    const cv::Point2d centre = applyAffine(vote.table_to_image, in.memory[vote.prototype].centre());
-    if (startedNear(in, starts, vote.prototype, centre))
-      continue;  // fitted already, or a pool of its prototype starts there
+      continue;  // tracked, fitted already, or a pool of its prototype starts there
     FitStart start{vote.prototype, {vote.table_to_image}, false, {}, {}};
     for (int place : vote.places)
     {

@@ -5,7 +5,6 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "amcr/extraction/outline_edges.h"
 #include "amcr/filter/particles.h"
 #include "amcr/scan/ray_directions.h"
 
@@ -107,20 +106,5 @@ std::vector<PoseVote> poolPoseVotes(const ProposalIndex& index, const PrototypeM
     return a.places.size() != b.places.size() ? a.places.size() > b.places.size() : a.distance < b.distance;
   });
   return out;
-}
-
-double screenPose(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
-                  double tolerance)
-{
-  constexpr std::size_t kScreenPoints = 64;
-  const std::size_t total = prototype.outline().size();
-  if (total == 0)
-    return 0.0;
-  const std::size_t step = (total + kScreenPoints - 1) / kScreenPoints;
-  const std::vector<MappedPoint> all = mapOutline(prototype, table_to_image);
-  std::vector<MappedPoint> spread;
-  for (std::size_t i = 0; i < all.size(); i += step)
-    spread.push_back(all[i]);
-  return mappedOutlineSupport(scanner, spread, (total + step - 1) / step, tolerance);
 }
 }  // namespace amcr
