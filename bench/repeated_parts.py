@@ -11,6 +11,10 @@ gives per draw and seed the copies reported within 3 px (mean over the body's co
 reported, the median corner error, and the copies found by frames 10, 20, ...
 
     bench/repeated_parts.py --out .build/repeated-parts [--draws 1-3] [--seeds 1-2] [--frames 60] [--config FILE]
+                            [--board 1600x1200 --grid 5x6]
+
+--board and --grid draw another board (its copies spread evenly over it); without --config, a board
+larger than 640 px is read at its own size (working_resolution).
 
 The parts are 52-60 px, below the default min_object_size (64 px), and 36 is more than a config
 with max_objects under 36 reports: the --config given should set min_object_size (40 here) and
@@ -43,12 +47,16 @@ def draw_part():
     return part, alpha
 
 
-def draw_scene(draw, part, alpha):
-    """The board with its copies, and each copy's template px -> image px affine (2 x 3)."""
+def draw_scene(draw, part, alpha, size=(640, 480), grid=(ROWS, COLUMNS)):
+    """The board (`size`: width, height) with a grid (rows, columns) of copies, and each copy's
+    template px -> image px affine (2 x 3). The default board and grid are the 640 x 480 board with
+    6 x 6 copies 104 x 78 px apart; another board spreads its grid evenly over the board."""
     rng = np.random.default_rng(draw)
-    board = np.full((480, 640), 150, np.uint8)
-    for _ in range(25):
-        p = rng.integers(0, [640, 480], size=2)
+    width, height = size
+    rows, columns = grid
+    board = np.full((height, width), 150, np.uint8)
+    for _ in range(int(round(25 * width * height / (640 * 480)))):
+        p = rng.integers(0, [width, height], size=2)
         q = p + rng.integers(-60, 60, size=2)
         cv2.line(board, (int(p[0]), int(p[1])), (int(q[0]), int(q[1])), int(rng.integers(60, 230)),
                  int(rng.integers(1, 3)))
@@ -56,15 +64,16 @@ def draw_scene(draw, part, alpha):
     body_mask[BODY[0]:BODY[1] + 1, BODY[0]:BODY[1] + 1] = 255
     truth = []
     centre = 0.5 * (SIDE - 1)
-    for r in range(ROWS):
-        for c in range(COLUMNS):
-            x = 60 + c * 104 + rng.uniform(-4, 4)
-            y = 45 + r * 78 + rng.uniform(-4, 4)
+    default = (width, height, rows, columns) == (640, 480, ROWS, COLUMNS)
+    for r in range(rows):
+        for c in range(columns):
+            x = (60 + c * 104 if default else (c + 0.5) * width / columns) + rng.uniform(-4, 4)
+            y = (45 + r * 78 if default else (r + 0.5) * height / rows) + rng.uniform(-4, 4)
             scale = rng.uniform(52, 60) / (BODY[1] - BODY[0] + 1)
             m = cv2.getRotationMatrix2D((centre, centre), rng.uniform(0, 360), scale)
             m[:, 2] += [x - centre, y - centre]
-            warped = cv2.warpAffine(part, m, (640, 480), flags=cv2.INTER_AREA)
-            inside = cv2.warpAffine(body_mask, m, (640, 480)) > 127
+            warped = cv2.warpAffine(part, m, (width, height), flags=cv2.INTER_AREA)
+            inside = cv2.warpAffine(body_mask, m, (width, height)) > 127
             board[inside] = warped[inside]
             truth.append(m)
     noisy = cv2.GaussianBlur(board, (0, 0), 0.8) + rng.normal(0, 4, board.shape)
@@ -95,7 +104,17 @@ def score(objects, truth):
 def main():
     parser = still_photo_parser(__doc__, "repeated-parts", "1-2", "parameter file for amcr_offline (see above)")
     parser.add_argument("--draws", default="1-3")
+    parser.add_argument("--board", default="640x480", help="the board's size, WIDTHxHEIGHT px (default 640x480)")
+    parser.add_argument("--grid", default="%dx%d" % (ROWS, COLUMNS), help="ROWSxCOLUMNS copies (default 6x6)")
     args = parser.parse_args()
+    try:
+        size = tuple(int(v) for v in args.board.split("x"))
+        grid = tuple(int(v) for v in args.grid.split("x"))
+        if len(size) != 2 or len(grid) != 2 or min(size + grid) < 1:
+            raise ValueError
+    except ValueError:
+        parser.error("--board wants WIDTHxHEIGHT and --grid ROWSxCOLUMNS, positive numbers: got %r and %r"
+                     % (args.board, args.grid))
 
     prototypes = os.path.join(args.out, "prototypes")
     os.makedirs(prototypes, exist_ok=True)
@@ -104,15 +123,21 @@ def main():
     config = args.config
     if not config:
         config = os.path.join(args.out, "config.yaml")
+        # A board larger than the default working resolution is read at its own size, so that the
+        # parts stay 52-60 px in the working image.
+        changed = {"min_object_size:": "min_object_size: 40.0\n"}
+        if max(size) > 640:
+            changed["working_resolution:"] = "working_resolution: %d\n" % max(size)
         with open(os.path.join(HERE, "..", "config", "amcr.yaml")) as f:
-            lines = ["min_object_size: 40.0\n" if line.startswith("min_object_size:") else line for line in f]
+            lines = [next((v for k, v in changed.items() if line.startswith(k)), line) for line in f]
         with open(config, "w") as f:
             f.writelines(lines)
 
     summary = []
-    print("%d copies of a drawn part per draw, %d frames, config %s" % (ROWS * COLUMNS, args.frames, config))
+    print("%d copies of a drawn part per draw on a %d x %d board, %d frames, config %s"
+          % (grid[0] * grid[1], size[0], size[1], args.frames, config))
     for draw in parse_seeds(args.draws):
-        image, truth = draw_scene(draw, part, alpha)
+        image, truth = draw_scene(draw, part, alpha, size, grid)
         photo = os.path.join(args.out, "draw-%d.png" % draw)
         cv2.imwrite(photo, image)
         for seed in parse_seeds(args.seeds):
