@@ -206,16 +206,22 @@ TEST(EndToEndViewBound, AViewBeyondMaxAnisotropyIsNotReportedAsNew)
   const Target t = oblique(ShapeId::kCrescent, {310, 250}, -70, 202);
   amcr::Affine truth;
   const std::vector<cv::Mat> frames = renderTarget(t, truth);
-  amcr::Params p = params();
-  p.max_anisotropy = 2.0;
-  amcr::Recognizer recognizer(p, memory());
-  int reports = 0;
-  for (int k = 0; k < kMaxIterations; ++k)
-    for (const amcr::RecognizedObject& o : recognizer.step(frames[k]).objects)
-      reports += o.label == "crescent" ? 1 : 0;
-  std::cout << "[ views    ] the crescent at anisotropy 2.5 under a bound of 2: reported in " << reports << " of "
-            << kMaxIterations << " frames\n";
-  EXPECT_EQ(reports, 0);
+  // Frames with the crescent reported under a bound on the views.
+  const auto reportedFrames = [&frames](double max_anisotropy) {
+    amcr::Params p = params();
+    p.max_anisotropy = max_anisotropy;
+    amcr::Recognizer recognizer(p, memory());
+    int reports = 0;
+    for (int k = 0; k < kMaxIterations; ++k)
+      for (const amcr::RecognizedObject& o : recognizer.step(frames[k]).objects)
+        reports += o.label == "crescent" ? 1 : 0;
+    return reports;
+  };
+  const int within = reportedFrames(3.0), beyond = reportedFrames(2.0);
+  std::cout << "[ views    ] the crescent at anisotropy 2.5: reported in " << within << " of " << kMaxIterations
+            << " frames under a bound of 3, " << beyond << " under a bound of 2\n";
+  EXPECT_GT(within, 0) << "the scene's crescent is not found even within the bound: the test shows nothing";
+  EXPECT_EQ(beyond, 0);
 }
 
 // min_object_size: the same arrow scene, recognized (right label, corners
