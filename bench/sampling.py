@@ -15,6 +15,7 @@ import numpy as np
 
 import printed_target
 import real_camera
+from occluders import Occluder
 from sequence_files import write_memory
 from sequence_memories import mpeg7_file
 from sequence_photos import cut_part, render_photo
@@ -44,6 +45,21 @@ SAMPLED_SUITES = {
     "real-photos-clean": dict(like="real-photos", kind="photo", memory=16, noise="none", sequences=(2, 1),
                               frames=(80, 40), draws_of="real-photos-sampled"),
 }
+# The occluded suites (bench/occluders.py): the draws of `paper-sampled` with the target partly
+# covered in every frame by an occluder in front of it, `occluded` the share of its area covered
+# (0: no occluder, the same frames as `paper-sampled`: the reference the others are compared with);
+# `clutter-occluded-sampled`: the draws of `clutter-only-sampled` with an occluder moving in view
+# ("free": no target to cover). Not among the suites sampled_benchmark runs by default.
+OCCLUDED_SHARES = (0, 15, 25, 40)
+for _share in OCCLUDED_SHARES:
+    SAMPLED_SUITES["occluded-%d-sampled" % _share] = dict(
+        like="paper", kind="rendered", memory=17, noise="drawn", sequences=(6, 2), frames=(60, 40),
+        draws_of="paper-sampled", occluded=_share / 100.0)
+SAMPLED_SUITES["clutter-occluded-sampled"] = dict(
+    like="clutter-only", kind="rendered", memory=17, noise="drawn", sequences=(4, 2), frames=(60, 40),
+    draws_of="clutter-only-sampled", occluded="free")
+DEFAULT_SUITES = [name for name, spec in SAMPLED_SUITES.items() if "occluded" not in spec]
+OCCLUSION_SUITES = [name for name, spec in SAMPLED_SUITES.items() if "occluded" in spec]
 SPREAD = 0.05  # the drawn target's aspect, hole sizes and hole places: each within +-5% of the measured
 SQUARE_CHANCE = 0.25  # a target within SPREAD of square is drawn as a plain square (aspect 1) this often
 
@@ -173,14 +189,21 @@ def render_draw(folder, suite, k, seed, mpeg7, classes, mode, counts=None):
             render_photo(path, suite, index, frames, seed, key=plan["key"], noise_scale=scale)
         else:
             memory = {c: mpeg7_file(c, 1) for c in plan["memory"]}
+            occluder = None
+            if spec.get("occluded"):
+                share = None if spec["occluded"] == "free" else spec["occluded"]
+                occluder = Occluder(plan["key"], index, share, [c for c in classes if c not in plan["memory"]])
             render_sequence(path, suite, index, dict(SUITES[like]), memory, classes, mpeg7, frames, seed,
-                            key=plan["key"], noise_scale=scale)
+                            key=plan["key"], noise_scale=scale, occluder=occluder)
         with open(os.path.join(path, "truth.json")) as f:
             truth = json.load(f)
         record["sequences_rendered"].append({
             "name": os.path.basename(path), "noise_scale": round(scale, 6),
             "noise_sigma": truth.get("noise_sigma", 0.0),
             "targets": sorted({t["label"] for t in truth["targets"]})})
+        if "occluder" in truth:
+            record["sequences_rendered"][-1]["occluder"] = {
+                k: v for k, v in truth["occluder"].items() if k != "covered_per_frame"}
     tmp = record_path + ".tmp"
     with open(tmp, "w") as f:
         json.dump(record, f, indent=1)

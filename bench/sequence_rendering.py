@@ -61,11 +61,14 @@ def random_blob(rng):
     return mask
 
 
-def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, seed, key=None, noise_scale=1.0):
+def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, seed, key=None, noise_scale=1.0,
+                    occluder=None):
     """Sequence `index` of `suite` into `path`. Every generator of the sequence is keyed by (seed, the
     suite's SEED_INDEX; `like`'s for the draws it shares with `like`) and the index; `key` (a list of
     integers) replaces that pair for a construction drawn elsewhere (bench/sampled_benchmark).
-    `noise_scale` multiplies the drawn noise sigma (1: as drawn)."""
+    `noise_scale` multiplies the drawn noise sigma (1: as drawn). `occluder` (bench/occluders.py, with
+    a generator of its own: the scene's draws stay the same) is drawn in front of the first target in
+    every frame, or on its own in a scene with no target; truth.json records it as "occluder"."""
     seed_suite = spec.get("like", suite)
     like_key = [seed, SEED_INDEX[seed_suite]] if key is None else list(key)
     own_key = [seed, SEED_INDEX[suite]] if key is None else list(key)
@@ -159,6 +162,9 @@ def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, se
         margins = cv2.copyMakeBorder(base * light, 0, 0, HD_PAD, HD_PAD, cv2.BORDER_REFLECT_101)
         hd_from_wide = HD_FROM_640 @ np.array([[1.0, 0.0, -HD_PAD], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
 
+    if occluder is not None:
+        occluder.start(clutter, movers[0][1:] if movers else None, inverted)
+
     frame_dir = os.path.join(path, "frames")
     if os.path.isdir(frame_dir):
         shutil.rmtree(frame_dir)
@@ -167,12 +173,16 @@ def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, se
     for k in range(frames):
         frame = clutter.copy()
         objects = []
+        first_matrix = None
         for label, mask, value, mover in movers:
             matrix = mover.pose(k)
+            first_matrix = matrix if first_matrix is None else first_matrix
             paint(frame, mask, matrix, value)
             if hd:
                 matrix = to_hd(matrix)
             objects.append({"label": label, "prototype_to_image": np.round(matrix, 6).tolist()})
+        if occluder is not None:
+            occluder.paint(frame, first_matrix)
         frame *= light
         if contrast != 1.0:
             frame = FAINT_GREY + contrast * (frame - FAINT_GREY)
@@ -205,6 +215,7 @@ def render_sequence(path, suite, index, spec, memory, classes, mpeg7, frames, se
         **({"anisotropy": round(movers[0][3].squash[0], 4),
             "squash_axis_deg": round(math.degrees(movers[0][3].squash[1]), 2)} if spec.get("oblique") else {}),
         **({"like": spec["like"], "hd_from_640": HD_FROM_640.tolist()} if hd else {}),
+        **({"occluder": occluder.record()} if occluder is not None else {}),
         "convention": "prototype_to_image maps prototype pixel (x, y) to image pixel A @ (x, y, 1); "
                       "integer coordinates are pixel centres (OpenCV)",
         "frames": truth_frames,
