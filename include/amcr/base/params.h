@@ -230,6 +230,12 @@ struct ExtractionParams
   /// object's size [0, 0.2]: the error of a prototype drawn from a measured
   /// target; 0 = the whole outline moves as one (outline_parts.h).
   double part_shift = 0.05;
+  /// Smallest share of a new object's outline that must be visible, the
+  /// rest covered by something in front of it (covered_outline.h); the
+  /// score is then the share of the visible outline on edges (a tracked
+  /// object needs 0.65 of it) [0, 1]; 1 = no outline point counts as
+  /// covered: the score is the share of the whole outline.
+  double min_visible_share = 0.5;
   double min_object_size = 64.0;      ///< smallest object reported: longer side of its outline's box, input px [0, 4000]
 };
 

@@ -53,6 +53,10 @@ struct RivalVerdict
   int points = 0;                                      ///< distinguishing points of that rival
   GenericRival::Kind rival = GenericRival::Kind::kEllipse;  ///< that rival
   bool tested = false;                                 ///< some rival had enough distinguishing points
+  /// A rival's distinguishing points are mostly covered (fewer than half
+  /// of them, or fewer than `min_points`, visible): what shows of the object
+  /// does not tell it from that rival.
+  bool hidden = false;
 };
 
 /// Checks the prototype's outline, mapped into the image by `table_to_image`
@@ -63,8 +67,11 @@ struct RivalVerdict
 /// prototype is that generic shape, as far as the image can tell). Each
 /// distinguishing point is checked for an edge within `tolerance` px along
 /// its normal, with the polarity of the outline's majority, as the score
-/// checks the whole outline (outline_fit.h).
+/// checks the whole outline (outline_fit.h). With `covered` (per mapped
+/// point, 1 where it is covered: covered_outline.h), only the visible
+/// distinguishing points count towards the support.
 RivalVerdict verifyAgainstRivals(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,
                                  const std::vector<GenericRival>& rivals, const Homography& table_to_image,
-                                 double tolerance, double apart, int min_points);
+                                 double tolerance, double apart, int min_points,
+                                 const std::vector<std::uint8_t>& covered = {});
 }  // namespace amcr

@@ -43,6 +43,11 @@ Homography refineHomographyOnEdges(const Prototype& prototype, const RadialScann
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,
                       double tolerance, double part_shift = 0.0);
 
+/// verifyOutline (outline_fit.h) under a homography.
+OutlineVerification verifyOutline(const Prototype& prototype, const RadialScanner& scanner,
+                                  const Homography& table_to_image, double tolerance, double part_shift,
+                                  bool find_covered);
+
 /// How far the mapped outline lies from its edges: the mean over all outline
 /// points of the distance, px, to the nearest edge of the majority polarity
 /// along the normal (to a fraction of a pixel), each capped at `cap`; a point

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "amcr/base/affine.h"
+#include "amcr/extraction/outline_edges.h"
 #include "amcr/memory/prototype.h"
 #include "amcr/scan/radial_scan.h"
 
@@ -14,9 +15,11 @@ namespace amcr
 /// image edges: each pass looks for the strongest edge within `search` px
 /// along every outline point's normal and refits the affine to the points
 /// found (least squares, residuals beyond 2.5x the median dropped).
-/// Returns the input affine when too few edges are found.
+/// Returns the input affine when too few edges are found. Outline points
+/// set in `skip` (one flag per outline point, as OutlineVerification::covered)
+/// take no part: an occluder's contour would pull the fit towards itself.
 Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
-                     int iterations, double search);
+                     int iterations, double search, const std::vector<std::uint8_t>& skip = {});
 
 /// Share, in [0, 1], of the outline points that have an image edge within
 /// `tolerance` px along their normal, with the edge polarity the majority of
@@ -26,6 +29,14 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
 /// object's size (outline_parts.h).
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
                       double tolerance, double part_shift = 0.0);
+
+/// outlineSupport with, when `find_covered` and the prototype is a
+/// silhouette, the outline points that lie under something in front of the
+/// object (covered_outline.h) left out: the score is then the share of the
+/// visible outline on edges (outline_edges.h: verifyMappedOutline).
+OutlineVerification verifyOutline(const Prototype& prototype, const RadialScanner& scanner,
+                                  const Affine& table_to_image, double tolerance, double part_shift,
+                                  bool find_covered);
 
 /// The tolerance of the score for an object whose outline is `object_size`
 /// px long (outlineSize): `relative` of that size, never above `tolerance`

@@ -24,6 +24,7 @@ struct PerspectiveRule
   double max_corner_shift = 0.2;   ///< the box's corners move at most this share of its mapped diagonal from the affine's
   double max_scale = 8.0;          ///< local scale bound (params.max_affine_scale)
   int pass_factor = 3;             ///< the homography gets this many times the affine's refinement passes
+  bool find_covered = false;       ///< supports are of the visible outline (outline_fit.h: verifyOutline), as the score's
 };
 
 /// The outcome for one object (table px -> input px).

@@ -1,6 +1,7 @@
 // What the recognizer reports per frame (spec "Output").
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,10 @@ struct RecognizedObject
   /// that could explain it (generic_rivals.h), the share on edges; 1 when it
   /// has none to tell.
   double rival_support = 1.0;
+  /// Share, in [0, 1], of the prototype's outline not covered by something
+  /// in front of the object (covered_outline.h); the score is the share of
+  /// this visible part on edges. 1 when nothing covers it.
+  double visible_share = 1.0;
   int support = 0;  ///< V-particles that agree on this object
   Affine image_to_prototype;  ///< input px -> original prototype px
   Affine prototype_to_image;  ///< original prototype px -> input px
@@ -69,6 +74,8 @@ struct RecognizedObject
   /// The prototype's outline mapped into the input (by the homography when
   /// homography_valid, else the affine), px.
   std::vector<cv::Point2d> outline;
+  /// Per point of `outline`, 1 where it is covered; empty when none is.
+  std::vector<std::uint8_t> covered;
 };
 
 /// Maps the image side of `object` by an affine of the image (a motion

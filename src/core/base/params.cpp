@@ -105,6 +105,7 @@ const std::vector<NumericParameter>& numericParameters()
       AMCR_DOUBLE(verify_relative_tolerance, "share of the object's size", 0, 0.1, "the score's tolerance as a share of the longer side of the object's outline box: the smaller of it and verify_tolerance applies, never below 1 px; 0 = verify_tolerance at every size"),
       AMCR_DOUBLE(rival_part_support, "share", 0, 1, "share of the outline points that tell the prototype from its generic rivals (an ellipse, its convex hull, its rectangle, a pair of lines) that must lie on image edges for a report; 0 = off"),
       AMCR_DOUBLE(part_shift, "share of the object's size", 0, 0.2, "how far an inner part of the prototype's outline (a hole's) may move and scale on its own onto its edges before the score counts it; 0 = the outline moves as one"),
+      AMCR_DOUBLE(min_visible_share, "share", 0, 1, "smallest share of a new object's outline that must be visible, the rest covered by something in front of it; the score is then the share of the visible outline on edges (a tracked object needs 0.65 of it); 1 = none counts as covered"),
       AMCR_DOUBLE(min_object_size, "input px", 0, 4000, "smallest object reported: longer side of the smallest rectangle around its outline"),
       AMCR_INT(confirm_frames, "frames", 1, 1000, "frames an object is reported in before it is confirmed (tentative until then)"),
       AMCR_INT(lost_frames, "frames", 1, 1000, "frames in a row without a report after which an object's track ends (lost)"),

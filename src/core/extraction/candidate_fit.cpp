@@ -7,6 +7,7 @@
 
 #include "amcr/base/homography.h"
 #include "amcr/base/parallel_for.h"
+#include "amcr/extraction/homography_fit.h"
 #include "amcr/extraction/outline_fit.h"
 #include "amcr/extraction/perspective_choice.h"
 #include "amcr/extraction/viewing_angle.h"
@@ -23,6 +24,14 @@ constexpr std::size_t kMaxPerspectiveFits = 3;  // best candidates per frame tha
 // A new object's fit that reaches this share of the decision threshold is
 // tried again at its prototype's self-similar turns.
 constexpr double kTurnedFitRatio = 0.6;
+// A fit with covered points is refined again without them and without this
+// share of the outline on either side of each covered run (where the
+// occluder's contour crosses the outline, and the points find its edge); the
+// new fit is taken unless its score drops by more than kRefitSlack (the
+// first fit counted the occluder's contour as the object's).
+constexpr double kBesideCovered = 0.03;
+constexpr double kRefitSlack = 0.05;
+constexpr double kLeadingScoreShare = 0.5;  // a fit scoring less is not refitted (as a leading hypothesis)
 
 /// A candidate for a prototype at a table -> image affine (score, support,
 /// correspondences, outline); false when the affine is out of bounds or the
@@ -57,8 +66,18 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   if (size < in.params.min_object_size)
     return false;
   candidate.score_tolerance = verifyTolerance(size, in.params.verify_tolerance, in.params.verify_relative_tolerance);
-  object.score = use_homography ? perspective->support
-                                : outlineSupport(p, in.scanner, table_to_image, candidate.score_tolerance, in.params.part_shift);
+  // The score of the visible outline (covered_outline.h).
+  const bool find_covered = in.params.min_visible_share < 1.0;
+  OutlineVerification verification =
+      use_homography ? verifyOutline(p, in.scanner, perspective->table_to_image, candidate.score_tolerance,
+                                     in.params.part_shift, find_covered)
+                     : verifyOutline(p, in.scanner, table_to_image, candidate.score_tolerance, in.params.part_shift,
+                                     find_covered);
+  object.score = verification.score;
+  object.visible_share = verification.visible_share;
+  candidate.covered_found = std::move(verification.covered_found);
+  if (std::find(verification.covered.begin(), verification.covered.end(), 1) != verification.covered.end())
+    object.covered = std::move(verification.covered);
   object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
   object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
   object.homography_valid = use_homography;
@@ -82,6 +101,40 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   }
   object.support = static_cast<int>(object.correspondences.size());
   return true;
+}
+
+/// The flags of `covered` widened by `beside` points on either side (cyclic).
+std::vector<std::uint8_t> widened(const std::vector<std::uint8_t>& covered, std::size_t beside)
+{
+  const std::size_t n = covered.size();
+  std::vector<std::uint8_t> out(covered);
+  for (std::size_t i = 0; i < n; ++i)
+    if (covered[i] != 0 && (covered[(i + 1) % n] == 0 || covered[(i + n - 1) % n] == 0))
+      for (std::size_t k = 1; k <= beside; ++k)
+      {
+        out[(i + k) % n] = 1;
+        out[(i + n - k) % n] = 1;
+      }
+  return out;
+}
+
+/// A candidate with covered points fitted again on its visible outline
+/// alone (covered_outline.h): the points under the occluder and beside it
+/// take no part in the refinement (the first fit may have been pulled onto
+/// the occluder's contour).
+void refitVisible(const ExtractionInput& in, Candidate& candidate)
+{
+  const std::vector<std::uint8_t>& covered = candidate.covered_found;
+  if (covered.empty() || candidate.object.score < kLeadingScoreShare * in.params.decision_threshold)
+    return;
+  const int prototype = candidate.object.prototype_id;
+  const Prototype& p = in.memory[prototype];
+  const std::size_t beside = static_cast<std::size_t>(std::ceil(kBesideCovered * static_cast<double>(covered.size())));
+  const Affine refined = refineOnEdges(p, in.scanner, candidate.table_to_image, in.params.refine_iterations,
+                                       in.params.refine_search, widened(covered, beside));
+  Candidate other;
+  if (describeObject(in, prototype, refined, other) && other.object.score >= candidate.object.score - kRefitSlack)
+    candidate = std::move(other);
 }
 
 /// A prototype whose body is round (an apple) may be fitted turned: the
@@ -178,6 +231,7 @@ void fitPerspective(const ExtractionInput& in, Candidate& candidate)
   PerspectiveRule rule;
   rule.tolerance = candidate.score_tolerance;
   rule.part_shift = in.params.part_shift;
+  rule.find_covered = in.params.min_visible_share < 1.0;
   rule.max_scale = in.max_affine_scale;
   const PerspectiveFit fit = choosePerspective(in.memory[prototype], in.scanner, candidate.table_to_image,
                                                candidate.object.score, in.params.refine_iterations,
@@ -206,7 +260,10 @@ std::vector<Candidate> fitCandidates(const ExtractionInput& in, const std::vecto
       const Affine refined = refineOnEdges(p, in.scanner, affine, in.params.refine_iterations, in.params.refine_search);
       const bool described = describeObject(in, start.prototype, refined, candidate);
       if (described)
+      {
+        refitVisible(in, candidate);
         turnRoundShape(in, candidate);
+      }
       if (described &&
           (!found[s] || candidate.object.score > fitted[s].object.score))
       {

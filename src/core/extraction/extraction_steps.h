@@ -33,6 +33,8 @@ struct Candidate
   Affine table_to_image;         // the fitted affine, table px -> input px
   double score_tolerance = 0.0;  // px: the score's tolerance at the object's size
   bool adopted = false;          // took over a look-alike's V-particles (adoptSupport)
+  bool rival_hidden = false;     // its distinguishing parts are mostly covered (RivalVerdict::hidden)
+  std::vector<std::uint8_t> covered_found;  // OutlineVerification::covered_found of its fit
   std::vector<RayPlace> image_places;  // the image's places that voted for its start (coverage_schedule.h)
 };
 
@@ -88,9 +90,10 @@ void fitRivals(const ExtractionInput& in, const std::vector<FitStart>& starts, R
 
 /// The rival check of prototype `prototype` (its index) at a table -> image
 /// transform, with the distinguishing points' search scaled from the
-/// score's tolerance.
+/// score's tolerance; with `covered` (per outline point), the visible
+/// distinguishing points only.
 RivalVerdict rivalVerdict(const ExtractionInput& in, int prototype, const Homography& table_to_image,
-                          double score_tolerance);
+                          double score_tolerance, const std::vector<std::uint8_t>& covered = {});
 
 /// For a prototype whose rival ellipse explains its body but not its
 /// distinguishing part at `table_to_image`: the pose turned about the

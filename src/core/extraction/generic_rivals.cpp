@@ -165,7 +165,8 @@ std::vector<GenericRival> genericRivals(const Prototype& prototype)
 
 RivalVerdict verifyAgainstRivals(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,
                                  const std::vector<GenericRival>& rivals, const Homography& table_to_image,
-                                 double tolerance, double apart, int min_points)
+                                 double tolerance, double apart, int min_points,
+                                 const std::vector<std::uint8_t>& covered)
 {
   RivalVerdict verdict;
   if (mapped.empty())
@@ -176,11 +177,16 @@ RivalVerdict verifyAgainstRivals(const RadialScanner& scanner, const std::vector
   for (const GenericRival& rival : rivals)
   {
     const std::vector<double> distance = distancesToRival(mapped, rival, table_to_image);
-    int points = 0, found = 0;
+    int points = 0, found = 0, hidden = 0;
     for (std::size_t i = 0; i < mapped.size(); ++i)
     {
       if (!(distance[i] > apart))
         continue;
+      if (i < covered.size() && covered[i] != 0)
+      {
+        ++hidden;
+        continue;
+      }
       ++points;
       if (on_edge[i] < 0)
       {
@@ -189,8 +195,16 @@ RivalVerdict verifyAgainstRivals(const RadialScanner& scanner, const std::vector
       }
       found += on_edge[i];
     }
-    if (points < min_points)
+    if (points + hidden < min_points)
       continue;
+    // Covered more than visible: the rival explains what shows as well.
+    if (points < min_points || points < hidden)
+    {
+      verdict.tested = true;
+      verdict.hidden = true;
+      if (points < min_points)
+        continue;
+    }
     const double support = static_cast<double>(found) / points;
     if (!verdict.tested || support < verdict.support)
     {

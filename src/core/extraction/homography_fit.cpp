@@ -182,9 +182,17 @@ Homography refineHomographyOnEdges(const Prototype& prototype, const RadialScann
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,
                       double tolerance, double part_shift)
 {
+  return verifyOutline(prototype, scanner, table_to_image, tolerance, part_shift, false).score;
+}
+
+OutlineVerification verifyOutline(const Prototype& prototype, const RadialScanner& scanner,
+                                  const Homography& table_to_image, double tolerance, double part_shift,
+                                  bool find_covered)
+{
   std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
   fitPartsWithinShare(prototype, scanner, mapped, part_shift, tolerance);
-  return mappedOutlineSupport(scanner, mapped, prototype.outline().size(), tolerance);
+  return verifyMappedOutline(scanner, mapped, prototype.outline().size(), tolerance,
+                             find_covered && !prototype.isTemplate());
 }
 
 double outlineResidual(const Prototype& prototype, const RadialScanner& scanner, const Homography& table_to_image,

@@ -120,7 +120,10 @@ void report(const ExtractionParams& params, double max_anisotropy, const TrackRe
     // part blurs them for a while), not for kRivalGraceFrames in a row.
     const bool rivals = track ? (passesRivals(params, candidate, true) || track->rival_misses < kRivalGraceFrames)
                               : passesRivals(params, candidate, false);
-    if (c.score < threshold || c.support < support || !rivals || (!track && c.anisotropy > max_anisotropy))
+    // Enough of it must show: the score is of the visible outline alone.
+    const bool visible = c.visible_share >= params.min_visible_share * (track ? kKeepTrackRatio : 1.0);
+    if (c.score < threshold || c.support < support || !rivals || !visible ||
+        (!track && c.anisotropy > max_anisotropy))
       continue;
     bool suppressed = false;
     for (const auto& kept : extraction.objects)

@@ -23,7 +23,7 @@ constexpr std::size_t kFitPointsDivisor = 4;
 }  // namespace
 
 Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
-                     int iterations, double search)
+                     int iterations, double search, const std::vector<std::uint8_t>& skip)
 {
   Affine current = table_to_image;
   if (iterations <= 0)
@@ -36,8 +36,11 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
     const std::vector<MappedPoint> mapped = mapOutline(prototype, current);
     std::vector<cv::Point2d> from, to;
     std::vector<double> residual;
-    for (const auto& p : mapped)
+    for (std::size_t i = 0; i < mapped.size(); ++i)
     {
+      const MappedPoint& p = mapped[i];
+      if (i < skip.size() && skip[i] != 0)
+        continue;
       double offset = 0.0;
       if (!nearestEdge(scanner, p, range, sign, offset))
         continue;
@@ -67,9 +70,17 @@ Affine refineOnEdges(const Prototype& prototype, const RadialScanner& scanner, c
 double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, const Affine& table_to_image,
                       double tolerance, double part_shift)
 {
+  return verifyOutline(prototype, scanner, table_to_image, tolerance, part_shift, false).score;
+}
+
+OutlineVerification verifyOutline(const Prototype& prototype, const RadialScanner& scanner,
+                                  const Affine& table_to_image, double tolerance, double part_shift,
+                                  bool find_covered)
+{
   std::vector<MappedPoint> mapped = mapOutline(prototype, table_to_image);
   fitPartsWithinShare(prototype, scanner, mapped, part_shift, tolerance);
-  return mappedOutlineSupport(scanner, mapped, prototype.outline().size(), tolerance);
+  return verifyMappedOutline(scanner, mapped, prototype.outline().size(), tolerance,
+                             find_covered && !prototype.isTemplate());
 }
 
 double verifyTolerance(double object_size, double tolerance, double relative)

@@ -52,7 +52,8 @@ PerspectiveFit choosePerspective(const Prototype& prototype, const RadialScanner
   if (!homographyWellConditioned(fit.homography, box, rule.max_scale, rule.max_depth_ratio) ||
       !nearAffine(fit.homography, table_to_image, box, rule.max_corner_shift))
     return fit;
-  fit.homography_support = outlineSupport(prototype, scanner, fit.homography, rule.tolerance, rule.part_shift);
+  fit.homography_support =
+      verifyOutline(prototype, scanner, fit.homography, rule.tolerance, rule.part_shift, rule.find_covered).score;
   if (fit.homography_support < affine_support)
     return fit;
   fit.used = true;

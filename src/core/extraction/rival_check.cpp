@@ -38,14 +38,15 @@ constexpr double kTurnStepDeg = 5.0;
 constexpr double kTurnSearch = 3.0;
 
 RivalVerdict verdictAt(const ExtractionInput& in, const Prototype& p, const std::vector<GenericRival>& rivals,
-                       const Homography& table_to_image, double score_tolerance)
+                       const Homography& table_to_image, double score_tolerance,
+                       const std::vector<std::uint8_t>& covered = {})
 {
   // The inner parts where the score counts them (outline_parts.h).
   std::vector<MappedPoint> mapped = mapOutline(p, table_to_image);
   fitPartsWithinShare(p, in.scanner, mapped, in.params.part_shift, score_tolerance);
   return verifyAgainstRivals(in.scanner, mapped, rivals, table_to_image,
                              kRivalSearch * score_tolerance, kRivalApart * kRivalSearch * score_tolerance,
-                             kMinRivalPoints);
+                             kMinRivalPoints, covered);
 }
 
 /// x -> centre + R(angle) (x - centre), table px.
@@ -77,10 +78,11 @@ void fitRivals(const ExtractionInput& in, const std::vector<FitStart>& starts, R
 }
 
 RivalVerdict rivalVerdict(const ExtractionInput& in, int prototype, const Homography& table_to_image,
-                          double score_tolerance)
+                          double score_tolerance, const std::vector<std::uint8_t>& covered)
 {
   std::vector<GenericRival> fitted;
-  return verdictAt(in, in.memory[prototype], rivalsOf(in, prototype, fitted), table_to_image, score_tolerance);
+  return verdictAt(in, in.memory[prototype], rivalsOf(in, prototype, fitted), table_to_image, score_tolerance,
+                   covered);
 }
 
 bool turnOntoDistinguishingParts(const ExtractionInput& in, int prototype_index, const Affine& table_to_image,
@@ -154,13 +156,20 @@ void verifyRivals(const ExtractionInput& in, std::vector<Candidate>& candidates)
     // The transform the object is reported with: its homography when used.
     const Homography table_to_image =
         composeHomography(liftAffine(in.memory[prototype].tableToOriginal()), candidate.object.homography);
-    const RivalVerdict verdict = rivalVerdict(in, prototype, table_to_image, candidate.score_tolerance);
+    // Only the visible distinguishing parts count (covered_outline.h).
+    const RivalVerdict verdict =
+        rivalVerdict(in, prototype, table_to_image, candidate.score_tolerance, candidate.object.covered);
     candidate.object.rival_support = verdict.support;
+    candidate.rival_hidden = verdict.hidden;
   });
 }
 
 bool passesRivals(const ExtractionParams& params, const Candidate& candidate, bool tracked)
 {
+  // What shows of a new object must tell it from its rivals; a tracked one
+  // told itself apart when its track started.
+  if (candidate.rival_hidden)
+    return tracked;
   return candidate.object.rival_support >= params.rival_part_support * (tracked ? kKeepTrackRatio : 1.0);
 }
 }  // namespace extraction_steps
