@@ -112,13 +112,16 @@ void expectOneErrorLine(const RunResult& run, int exit_code, const std::string& 
 void checkObject(const json& object, const std::string& line)
 {
   for (const char* key :
-       {"label", "track_id", "score", "support", "image_to_prototype", "prototype_to_image", "homography",
+       {"label", "track_id", "score", "visible_share", "support", "image_to_prototype", "prototype_to_image", "homography",
         "homography_valid", "anisotropy", "viewing_angle_deg", "correspondences"})
     EXPECT_TRUE(member(object, key) != nullptr) << key << " missing in " << line;
   const json* label = member(object, "label");
   EXPECT_TRUE(label && label->is_string()) << line;
   const json* score = member(object, "score");
   EXPECT_TRUE(score && score->is_number() && score->get<double>() >= 0.0 && score->get<double>() <= 1.0) << line;
+  const json* visible = member(object, "visible_share");
+  EXPECT_TRUE(visible && visible->is_number() && visible->get<double>() >= 0.0 && visible->get<double>() <= 1.0)
+      << line;
   for (const char* key : {"image_to_prototype", "prototype_to_image"})
   {
     const json* a = member(object, key);

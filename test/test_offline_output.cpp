@@ -155,7 +155,7 @@ TEST(JsonOutput, FrameLineHasTheDocumentedShape)
   EXPECT_EQ(line,
             "{\"frame\": 3, \"time_ms\": 3.142, \"iteration\": 7, \"iterations\": 0.500, \"mean_m_particles\": 412.3, "
             "\"objects\": [{\"label\": \"bird \\\"1\\\"\", \"instance\": \"bird \\\"1\\\"/bird-3.png\", "
-            "\"track_id\": 4, \"state\": \"held\", \"score\": 0.9300, \"support\": 17, "
+            "\"track_id\": 4, \"state\": \"held\", \"score\": 0.9300, \"visible_share\": 1.0000, \"support\": 17, "
             "\"image_to_prototype\": [[0.500000, 0.000000, -10.000000], [0.000000, 0.500000, null]], "
             "\"prototype_to_image\": [[2.000000, 0.000000, 20.000000], [0.000000, 2.000000, 0.000000]], "
             "\"homography\": [[2.0000000000, 0.1000000000, 20.0000000000], [0.0000000000, 2.0000000000, -3.0000000000], "

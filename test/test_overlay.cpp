@@ -215,6 +215,60 @@ TEST(DrawOverlay, LabelShowsTheViewingAngleAndAnisotropy)
   lines = amcr::objectLabel(object);
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[1], "view 71deg 3.00:1 persp");
+  object.visible_share = 0.634;  // partly covered: said how much shows
+  EXPECT_EQ(amcr::objectLabel(object)[0], "target #2 0.87 (9) tentative vis 63%");
+}
+
+// The covered part of an outline is drawn in grey over the outline's
+// colour, the visible part in the track's colour.
+TEST(DrawOverlay, ShowsTheCoveredPartOfAnOutline)
+{
+  const amcr::Params params = smallParams();
+  auto memory = std::make_shared<amcr::PrototypeMemory>();
+  memory->add("disc", silhouette(0), params);
+  amcr::Recognizer recognizer(params, memory);
+  const cv::Mat bgr = scene();
+  recognizer.step(bgr);
+  amcr::RecognitionResult result;
+  amcr::RecognizedObject object;
+  object.label = "disc";
+  object.prototype_id = 0;
+  object.track_id = 3;
+  object.score = 0.9;
+  object.visible_share = 0.75;
+  // A square outline (10 points a side), its right side covered.
+  for (int k = 0; k < 10; ++k)
+    object.outline.emplace_back(40 + 6 * k, 40);
+  for (int k = 0; k < 10; ++k)
+    object.outline.emplace_back(100, 40 + 6 * k);
+  for (int k = 0; k < 10; ++k)
+    object.outline.emplace_back(100 - 6 * k, 100);
+  for (int k = 0; k < 10; ++k)
+    object.outline.emplace_back(40, 100 - 6 * k);
+  object.covered.assign(object.outline.size(), 0);
+  for (int k = 10; k < 20; ++k)
+    object.covered[k] = 1;
+  result.objects.push_back(object);
+  const cv::Mat overlay = amcr::drawOverlay(bgr, recognizer, result);
+  result.objects[0].covered.clear();
+  const cv::Mat uncovered = amcr::drawOverlay(bgr, recognizer, result);
+  // Against the same outline with nothing covered: the covered side changed
+  // (grey dashes), the other three sides did not.
+  int changed_covered = 0, changed_visible = 0;
+  for (int t = 45; t < 95; ++t)
+  {
+    const auto changed = [&](int y, int x) { return overlay.at<cv::Vec3b>(y, x) != uncovered.at<cv::Vec3b>(y, x); };
+    changed_covered += changed(t, 100);
+    changed_visible += changed(t, 40) + changed(40, t) + changed(100, t);
+  }
+  EXPECT_GT(changed_covered, 10) << "the covered side is not drawn apart";
+  EXPECT_EQ(changed_visible, 0) << "a visible side was drawn as covered";
+  for (int t = 45; t < 95; ++t)
+  {
+    const cv::Vec3b c = overlay.at<cv::Vec3b>(t, 100);
+    if (c != uncovered.at<cv::Vec3b>(t, 100))
+      EXPECT_TRUE(c[0] == c[1] && c[1] == c[2]) << "the covered side's dashes are not grey at y " << t;
+  }
 }
 
 TEST(DrawOverlay, RefusesEmptyAndUnsupportedImages)

@@ -84,7 +84,8 @@ cv::Mat drawOverlay(const cv::Mat& input, const Recognizer& recognizer, const Re
 
 /// The label the overlay draws above an object, one string per line:
 /// "label #track score (support)", then "view <viewing angle>deg
-/// <anisotropy>:1", with " persp" when the homography is used.
+/// <anisotropy>:1", with " persp" when the homography is used; the first
+/// ends in " vis <visible share>%" when something covers part of the object.
 std::vector<std::string> objectLabel(const RecognizedObject& object);
 
 /// The colour of prototype `index` (BGR), as used in the overlay.

@@ -21,6 +21,7 @@ const cv::Scalar kPanelBackground(40, 40, 40);
 const cv::Scalar kPanelShape(115, 115, 115);
 const cv::Scalar kUndecided(170, 170, 170);
 const cv::Scalar kTextBackground(20, 20, 20);
+const cv::Scalar kCoveredColour(150, 150, 150);  // a covered part of an outline, over the outline's colour
 const int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
 /// An evenly spread hue sequence (golden ratio), as BGR.
@@ -144,9 +145,12 @@ std::vector<std::string> objectLabel(const RecognizedObject& object)
   std::string view = "view " + format("%.0f", object.viewing_angle_deg) + "deg " + format("%.2f:1", object.anisotropy);
   if (object.homography_valid)
     view += " persp";
-  return {object.label + " #" + std::to_string(object.track_id) + " " + format("%.2f", object.score) + " (" +
-              std::to_string(object.support) + ") " + toString(object.state),
-          view};
+  std::string first = object.label + " #" + std::to_string(object.track_id) + " " + format("%.2f", object.score) +
+                      " (" + std::to_string(object.support) + ") " + toString(object.state);
+  // How much of it shows, when something covers a part.
+  if (object.visible_share < 1.0)
+    first += " vis " + format("%.0f%%", 100.0 * object.visible_share);
+  return {first, view};
 }
 
 cv::Scalar vParticleColour(int index) { return hueColour(index + 0.5, 255); }
@@ -209,6 +213,24 @@ void drawMParticles(cv::Mat& canvas, const std::vector<PanelMap>& panels, const 
     }
 }
 
+/// The covered part of an object's outline (covered_outline.h): each covered
+/// point's stretch to the next one dotted in grey over the outline's colour,
+/// so that what the object is taken to be behind the occluder shows.
+void drawCovered(cv::Mat& image, const RecognizedObject& object)
+{
+  const std::size_t n = object.outline.size();
+  if (object.covered.size() != n)
+    return;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const cv::Point2d& a = object.outline[i];
+    const cv::Point2d& b = object.outline[(i + 1) % n];
+    if (object.covered[i] == 0 || !finite(a) || !finite(b) || i % 2 != 0)
+      continue;
+    cv::line(image, toPixel(a), toPixel(b), kCoveredColour, 2, cv::LINE_AA);
+  }
+}
+
 /// A recognized object: outline and text in the input, correspondence lines
 /// from the V-particles to the cluster means in the panel.
 void drawObject(cv::Mat& canvas, cv::Mat& image, const std::vector<PanelMap>& panels, const PrototypeMemory& memory,
@@ -223,6 +245,7 @@ void drawObject(cv::Mat& canvas, cv::Mat& image, const std::vector<PanelMap>& pa
       outline.push_back(toPixel(p));
   if (outline.size() >= 2)
     cv::polylines(image, outline, true, colour, 2, cv::LINE_AA);
+  drawCovered(image, object);
 
   if (options.draw_correspondences && object.prototype_id >= 0 && object.prototype_id < r)
   {

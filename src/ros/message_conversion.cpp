@@ -44,6 +44,7 @@ amcr::Recognition toMsg(const amcr::RecognizedObject& object)
   msg.track_id = object.track_id;
   msg.state = toMsg(object.state);
   msg.score = object.score;
+  msg.visible_share = object.visible_share;
   msg.support = object.support;
   toArray(object.image_to_prototype, msg.image_to_prototype);
   toArray(object.prototype_to_image, msg.prototype_to_image);
