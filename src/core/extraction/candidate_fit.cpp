@@ -27,8 +27,9 @@ constexpr double kTurnedFitRatio = 0.6;
 // A fit with covered points is refined again without them and without this
 // share of the outline on either side of each covered run (where the
 // occluder's contour crosses the outline, and the points find its edge); the
-// new fit is taken unless its score drops by more than kRefitSlack (the
-// first fit counted the occluder's contour as the object's).
+// new fit is taken when it claims covered points, unless its score drops by
+// more than kRefitSlack (the first fit counted the occluder's contour as the
+// object's).
 constexpr double kBesideCovered = 0.03;
 constexpr double kRefitSlack = 0.05;
 constexpr double kLeadingScoreShare = 0.5;  // a fit scoring less is not refitted (as a leading hypothesis)
@@ -132,8 +133,11 @@ void refitVisible(const ExtractionInput& in, Candidate& candidate)
   const std::size_t beside = static_cast<std::size_t>(std::ceil(kBesideCovered * static_cast<double>(covered.size())));
   const Affine refined = refineOnEdges(p, in.scanner, candidate.table_to_image, in.params.refine_iterations,
                                        in.params.refine_search, widened(covered, beside));
+  // Taken only as what it is for: a fit whose visible outline now claims
+  // the rest covered (not one more refinement onto clutter).
   Candidate other;
-  if (describeObject(in, prototype, refined, other) && other.object.score >= candidate.object.score - kRefitSlack)
+  if (describeObject(in, prototype, refined, other) && other.object.visible_share < 1.0 &&
+      other.object.score >= candidate.object.score - kRefitSlack)
     candidate = std::move(other);
 }
 
