@@ -141,6 +141,14 @@ void drawObjects(cv::Mat& image, const std::vector<Placement>& objects)
     fillPolygon(image, transformPoints(p.prototype_to_image, shapePolygon(p.shape)), p.grey);
 }
 
+Clutter distractorClutter(std::uint64_t seed)
+{
+  Clutter clutter;
+  clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
+  clutter.seed = seed;
+  return clutter;
+}
+
 cv::Mat renderBackground(const Scene& scene)
 {
   const Clutter& c = scene.clutter;

@@ -50,6 +50,10 @@ std::vector<cv::Point2d> shapePolygon(ShapeId id);
 std::shared_ptr<const amcr::PrototypeMemory> drawnMemory(const std::vector<ShapeId>& shapes,
                                                          const amcr::Params& params = amcr::Params());
 
+/// The drawn arrow, crescent and star, and the apple (drawApple(true),
+/// labelled "apple"), with the default parameters; built once.
+std::shared_ptr<const amcr::PrototypeMemory> memoryWithApple();
+
 /// The 8 feature rays a prototype's table holds at pixel (x, y) for heading
 /// bin `bin`, times `scale` (0 where a ray meets no edge): what a V-particle
 /// would measure at that place of an image of the prototype `scale` times larger.
@@ -127,6 +131,10 @@ struct Clutter
   double keep_out = 25.0;            ///< distractor shapes stay this far (px) from the objects' bounding boxes
   std::uint64_t seed = 1;
 };
+
+/// The end-to-end scenes' distractors: the default clutter with the two
+/// silhouettes their memories leave out (kEll, kFlag), drawn from `seed`.
+Clutter distractorClutter(std::uint64_t seed);
 
 struct Scene
 {

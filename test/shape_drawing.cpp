@@ -130,6 +130,18 @@ std::shared_ptr<const amcr::PrototypeMemory> drawnMemory(const std::vector<Shape
   return memory;
 }
 
+std::shared_ptr<const amcr::PrototypeMemory> memoryWithApple()
+{
+  static const std::shared_ptr<const amcr::PrototypeMemory> m = [] {
+    auto memory = std::make_shared<amcr::PrototypeMemory>();
+    for (const ShapeId id : {ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar})
+      memory->add(shapeName(id), drawPrototype(id), amcr::Params());
+    memory->add("apple", drawApple(true), amcr::Params());
+    return memory;
+  }();
+  return m;
+}
+
 std::vector<cv::Point2d> drawnBird(bool crest)
 {
   std::vector<cv::Point2d> polygon = {{15, 80},  {70, 100}, {90, 140}, {130, 150}, {155, 125},

@@ -45,6 +45,29 @@ cv::Mat scene()
   cv::rectangle(image, cv::Rect(120, 30, 60, 30), cv::Scalar(30, 30, 30), cv::FILLED);
   return image;
 }
+
+/// A recognizer of one disc prototype that has seen scene(), and an object
+/// of that prototype to draw (no outline yet).
+struct DiscView
+{
+  amcr::Recognizer recognizer{smallParams(), [] {
+                                auto memory = std::make_shared<amcr::PrototypeMemory>();
+                                memory->add("disc", silhouette(0), smallParams());
+                                return memory;
+                              }()};
+  cv::Mat bgr = scene();
+  amcr::RecognizedObject object;
+
+  DiscView()
+  {
+    recognizer.step(bgr);
+    object.label = "disc";
+    object.prototype_id = 0;
+    object.track_id = 3;
+    object.score = 0.9;
+    object.support = 4;
+  }
+};
 }  // namespace
 
 TEST(OverlayLayout, CellsFitBesideTheImageAndTheSizeIsEven)
@@ -117,20 +140,11 @@ TEST(DrawOverlay, FixedSizeBgrForEveryInputType)
 
 TEST(DrawOverlay, DrawsRecognizedObjectsEvenWithOddValues)
 {
-  const amcr::Params params = smallParams();
-  auto memory = std::make_shared<amcr::PrototypeMemory>();
-  memory->add("disc", silhouette(0), params);
-  amcr::Recognizer recognizer(params, memory);
-  const cv::Mat bgr = scene();
-  recognizer.step(bgr);
-
+  DiscView view;
+  amcr::Recognizer& recognizer = view.recognizer;
+  const cv::Mat& bgr = view.bgr;
   amcr::RecognitionResult result;
-  amcr::RecognizedObject object;
-  object.label = "disc";
-  object.prototype_id = 0;
-  object.track_id = 3;
-  object.score = 0.9;
-  object.support = 4;
+  amcr::RecognizedObject object = view.object;
   for (int k = 0; k < 16; ++k)
     object.outline.emplace_back(70 + 35 * std::cos(k * CV_PI / 8), 70 + 35 * std::sin(k * CV_PI / 8));
   object.outline.emplace_back(std::nan(""), 1.0);  // skipped, not drawn
@@ -223,18 +237,11 @@ TEST(DrawOverlay, LabelShowsTheViewingAngleAndAnisotropy)
 // colour, the visible part in the track's colour.
 TEST(DrawOverlay, ShowsTheCoveredPartOfAnOutline)
 {
-  const amcr::Params params = smallParams();
-  auto memory = std::make_shared<amcr::PrototypeMemory>();
-  memory->add("disc", silhouette(0), params);
-  amcr::Recognizer recognizer(params, memory);
-  const cv::Mat bgr = scene();
-  recognizer.step(bgr);
+  DiscView view;
+  amcr::Recognizer& recognizer = view.recognizer;
+  const cv::Mat& bgr = view.bgr;
   amcr::RecognitionResult result;
-  amcr::RecognizedObject object;
-  object.label = "disc";
-  object.prototype_id = 0;
-  object.track_id = 3;
-  object.score = 0.9;
+  amcr::RecognizedObject object = view.object;
   object.visible_share = 0.75;
   // A square outline (10 points a side), its right side covered.
   for (int k = 0; k < 10; ++k)
@@ -267,7 +274,9 @@ TEST(DrawOverlay, ShowsTheCoveredPartOfAnOutline)
   {
     const cv::Vec3b c = overlay.at<cv::Vec3b>(t, 100);
     if (c != uncovered.at<cv::Vec3b>(t, 100))
+    {
       EXPECT_TRUE(c[0] == c[1] && c[1] == c[2]) << "the covered side's dashes are not grey at y " << t;
+    }
   }
 }
 

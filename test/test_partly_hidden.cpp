@@ -29,31 +29,11 @@ constexpr double kOccluderGrey = 115.0;   // between the print (about 45) and th
 constexpr double kOccluderNoise = 6.0;    // grey levels, as the scene's
 constexpr double kCornerTolerance = 6.0;  // px, mean corner error of a right report (as the end-to-end tests)
 
-std::shared_ptr<const amcr::PrototypeMemory> memory()
-{
-  static const std::shared_ptr<const amcr::PrototypeMemory> m = [] {
-    auto memory = std::make_shared<amcr::PrototypeMemory>();
-    for (const ShapeId id : {ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar})
-      memory->add(amcr_test::shapeName(id), amcr_test::drawPrototype(id), amcr::Params());
-    memory->add("apple", amcr_test::drawApple(true), amcr::Params());
-    return memory;
-  }();
-  return m;
-}
-
 amcr::Params params(std::uint64_t seed)
 {
   amcr::Params p;
   p.seed = seed;
   return p;
-}
-
-amcr_test::Clutter clutter(std::uint64_t seed)
-{
-  amcr_test::Clutter c;
-  c.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
-  c.seed = seed;
-  return c;
 }
 
 /// Where a prototype image (255 on the shape) lies in a frame of `size` under `truth`.
@@ -125,7 +105,7 @@ struct Reports
 Reports run(const std::vector<cv::Mat>& frames, const std::string& label, const amcr::Affine& truth,
             const amcr::Params& p)
 {
-  amcr::Recognizer recognizer(p, memory());
+  amcr::Recognizer recognizer(p, amcr_test::memoryWithApple());
   Reports out;
   for (std::size_t k = 0; k < frames.size(); ++k)
   {
@@ -210,7 +190,7 @@ TEST(PartlyHidden, AQuarterCoveredTargetIsFound)
   for (std::uint64_t seed : amcr_test::firstOf<std::uint64_t>({1, 2, 3, 4, 5}, 2))
   {
     std::vector<cv::Mat> frames = amcr_test::printedOverClutter(amcr_test::drawPrototype(shape), truth,
-                                                                clutter(500 + seed), kFrames);
+                                                                amcr_test::distractorClutter(500 + seed), kFrames);
     const cv::Mat mask = targetMask(amcr_test::drawPrototype(shape), truth, frames[0].size());
     const std::vector<cv::Point> occluder = occluderOver(mask, 0.0, 0.25);
     ASSERT_NEAR(coveredArea(mask, occluder), 0.25, 0.02) << "the scene does not cover a quarter";
@@ -238,13 +218,13 @@ TEST(PartlyHidden, AHalfCoveredDiscIsNotAnApple)
     for (const double share : {0.5, 0.3})
     {
       std::vector<cv::Mat> frames =
-          amcr_test::printedOverClutter(amcr_test::drawApple(false), truth, clutter(400 + seed), kFrames);
+          amcr_test::printedOverClutter(amcr_test::drawApple(false), truth, amcr_test::distractorClutter(400 + seed), kFrames);
       const cv::Mat mask = targetMask(amcr_test::drawApple(false), truth, frames[0].size());
       // Up in the apple's frame, where its stem would be: the turn 0.3 rad moves it.
       const std::vector<cv::Point> occluder = occluderOver(mask, -M_PI / 2 + 0.3, share);
       for (std::size_t k = 0; k < frames.size(); ++k)
         drawOccluder(frames[k], occluder, 900 + k);
-      amcr::Recognizer recognizer(params(seed), memory());
+      amcr::Recognizer recognizer(params(seed), amcr_test::memoryWithApple());
       int apples = 0;
       for (const cv::Mat& frame : frames)
         for (const amcr::RecognizedObject& o : recognizer.step(frame).objects)
@@ -263,7 +243,7 @@ TEST(PartlyHidden, AnOccluderAloneIsNoObject)
   for (std::uint64_t seed : amcr_test::firstOf<std::uint64_t>({1, 2, 3}, 1))
   {
     amcr_test::Scene scene;
-    scene.clutter = clutter(600 + seed);
+    scene.clutter = amcr_test::distractorClutter(600 + seed);
     std::vector<cv::Mat> frames = amcr_test::renderSequence(scene, kFrames);
     const std::vector<cv::Point> flat = {{120, 140}, {300, 110}, {330, 260}, {150, 300}};
     const std::vector<cv::Point> striped = {{380, 260}, {560, 250}, {570, 420}, {390, 430}};
@@ -277,7 +257,7 @@ TEST(PartlyHidden, AnOccluderAloneIsNoObject)
       cv::fillConvexPoly(under, striped, cv::Scalar(255));
       stripes.copyTo(frames[k], under);
     }
-    amcr::Recognizer recognizer(params(seed), memory());
+    amcr::Recognizer recognizer(params(seed), amcr_test::memoryWithApple());
     int reports = 0;
     for (const cv::Mat& frame : frames)
       reports += static_cast<int>(recognizer.step(frame).objects.size());
@@ -300,7 +280,7 @@ TEST(PartlyHidden, AHeldObjectKeepsItsTrackWhileHalfCovered)
   for (std::uint64_t seed : amcr_test::firstOf<std::uint64_t>({1, 2, 3}, 1))
   {
     amcr_test::Scene scene;
-    scene.clutter = clutter(700 + seed);
+    scene.clutter = amcr_test::distractorClutter(700 + seed);
     scene.objects = {{ShapeId::kArrow, poseAt(0)}};
     std::vector<cv::Mat> frames = amcr_test::renderMovingSequence(
         scene, kFound + kCovered + kAfter, [&](int k) { return std::vector<amcr_test::Placement>{{ShapeId::kArrow, poseAt(k)}}; });
@@ -309,7 +289,7 @@ TEST(PartlyHidden, AHeldObjectKeepsItsTrackWhileHalfCovered)
       const cv::Mat mask = targetMask(amcr_test::drawPrototype(ShapeId::kArrow), poseAt(k), frames[k].size());
       drawOccluder(frames[k], occluderOver(mask, 0.5 * seed, 0.5), 900 + k);
     }
-    amcr::Recognizer recognizer(params(seed), memory());
+    amcr::Recognizer recognizer(params(seed), amcr_test::memoryWithApple());
     int id_before = 0, covered_reports = 0, after_reports = 0;
     std::set<int> ids_covered, ids_after;
     double least_visible = 1.0;

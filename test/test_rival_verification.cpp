@@ -21,28 +21,12 @@ using amcr_test::ShapeId;
 
 constexpr int kFrames = 60;
 
-std::shared_ptr<const amcr::PrototypeMemory> memoryWithApple()
-{
-  static const std::shared_ptr<const amcr::PrototypeMemory> m = [] {
-    auto memory = std::make_shared<amcr::PrototypeMemory>();
-    for (const ShapeId id : {ShapeId::kArrow, ShapeId::kCrescent, ShapeId::kStar})
-      memory->add(amcr_test::shapeName(id), amcr_test::drawPrototype(id), amcr::Params());
-    memory->add("apple", amcr_test::drawApple(true), amcr::Params());
-    return memory;
-  }();
-  return m;
-}
-
 /// kFrames frames of clutter with an apple (`stem`) or the disc of its body
 /// printed at `truth` (120 px across), each frame with its own noise.
 std::vector<cv::Mat> appleFrames(bool stem, std::uint64_t seed, amcr::Affine& truth)
 {
   truth = amcr_test::makeAffine(amcr_test::prototypeCentre(), {300, 250}, 0.3, 0.8, 0.8, 0.0);
-  amcr_test::Clutter clutter;
-  clutter.random_shapes = 7;
-  clutter.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
-  clutter.seed = seed;
-  return amcr_test::printedOverClutter(amcr_test::drawApple(stem), truth, clutter, kFrames);
+  return amcr_test::printedOverClutter(amcr_test::drawApple(stem), truth, amcr_test::distractorClutter(seed), kFrames);
 }
 
 /// Frames in which "apple" is reported with its body's centre within 6 px
@@ -51,7 +35,7 @@ std::vector<cv::Mat> appleFrames(bool stem, std::uint64_t seed, amcr::Affine& tr
 int appleReports(const std::vector<cv::Mat>& frames, const amcr::Affine& truth, const amcr::Params& p,
                  bool upright = false)
 {
-  amcr::Recognizer recognizer(p, memoryWithApple());
+  amcr::Recognizer recognizer(p, amcr_test::memoryWithApple());
   const cv::Point2d centre = amcr::applyAffine(truth, amcr_test::kAppleCentre);
   const cv::Point2d tip = amcr::applyAffine(truth, amcr_test::kAppleStemTip);
   const auto near = [](const cv::Point2d& a, const cv::Point2d& b) { return std::hypot(a.x - b.x, a.y - b.y) <= 6.0; };

@@ -51,13 +51,7 @@ amcr::Params params(bool flow, std::uint64_t seed = 1)
   return p;
 }
 
-amcr_test::Clutter clutter(std::uint64_t seed)
-{
-  amcr_test::Clutter c;
-  c.silhouettes = {ShapeId::kEll, ShapeId::kFlag};
-  c.seed = seed;
-  return c;
-}
+amcr_test::Clutter clutter(std::uint64_t seed) { return amcr_test::distractorClutter(seed); }
 
 // The moving object: its centre on a Lissajous path (each axis at most
 // 3.5 px per frame, together at most 5) and a rotation of 2 to 3 degrees
