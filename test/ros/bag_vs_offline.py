@@ -111,6 +111,7 @@ class BagVsOffline(unittest.TestCase):
                 self.assertEqual(got.track_id, want["track_id"], where)
                 self.assertEqual(got.support, want["support"], where)
                 self.assertAlmostEqual(got.score, want["score"], delta=SCORE_TOL, msg=where)
+                self.assertAlmostEqual(got.visible_share, want["visible_share"], delta=SCORE_TOL, msg=where)
                 for name in ("image_to_prototype", "prototype_to_image"):
                     flat = [v for row in want[name] for v in row]
                     for a, b in zip(getattr(got, name), flat):

@@ -17,6 +17,7 @@ TEST(MessageConversion, ObjectFieldsWithHomographyAndView)
   object.track_id = 5;
   object.state = amcr::ObjectState::kHeld;
   object.score = 0.91;
+  object.visible_share = 0.63;
   object.support = 7;
   object.image_to_prototype = amcr::Affine(0.5, 0.1, -3, -0.1, 0.5, 4);
   object.prototype_to_image = amcr::Affine(1.9, -0.4, 30, 0.4, 1.9, -8);
@@ -34,6 +35,7 @@ TEST(MessageConversion, ObjectFieldsWithHomographyAndView)
   EXPECT_EQ(msg.track_id, 5);
   EXPECT_EQ(msg.state, amcr::Recognition::HELD);
   EXPECT_DOUBLE_EQ(msg.score, 0.91);
+  EXPECT_DOUBLE_EQ(msg.visible_share, 0.63);
   EXPECT_EQ(msg.support, 7);
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 3; ++c)
