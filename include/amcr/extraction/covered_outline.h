@@ -3,7 +3,7 @@
 // not there (the object's inside or its surround goes on across the point)
 // or shows another surface over it: an occluder, whose own contour crosses
 // the outline. Only the second is covered; the decision then reads the
-// visible outline (outline_fit.h: OutlineVerification).
+// visible outline (outline_verification.h).
 #pragma once
 
 #include <cstdint>

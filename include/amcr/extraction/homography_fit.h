@@ -11,6 +11,7 @@
 
 #include "amcr/base/homography.h"
 #include "amcr/extraction/outline_edges.h"
+#include "amcr/extraction/outline_verification.h"
 #include "amcr/memory/prototype.h"
 #include "amcr/scan/radial_scan.h"
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "amcr/base/affine.h"
-#include "amcr/extraction/outline_edges.h"
+#include "amcr/extraction/outline_verification.h"
 #include "amcr/memory/prototype.h"
 #include "amcr/scan/radial_scan.h"
 
@@ -33,7 +33,7 @@ double outlineSupport(const Prototype& prototype, const RadialScanner& scanner, 
 /// outlineSupport with, when `find_covered` and the prototype is a
 /// silhouette, the outline points that lie under something in front of the
 /// object (covered_outline.h) left out: the score is then the share of the
-/// visible outline on edges (outline_edges.h: verifyMappedOutline).
+/// visible outline on edges (outline_verification.h).
 OutlineVerification verifyOutline(const Prototype& prototype, const RadialScanner& scanner,
                                   const Affine& table_to_image, double tolerance, double part_shift,
                                   bool find_covered);

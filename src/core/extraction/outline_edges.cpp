@@ -4,17 +4,11 @@
 #include <array>
 #include <cmath>
 
-#include "amcr/extraction/covered_outline.h"
-
 namespace amcr
 {
 namespace
 {
 constexpr std::size_t kPolaritySampleStep = 3;  // every third outline point tells the polarity
-// Smallest share of the visible outline on edges with which an outline
-// claims covered points (verifyMappedOutline). Clean occluded targets show
-// 0.95-1; a fit on clutter that found "covered" stretches, 0.75-0.8.
-constexpr double kCoveredMinScore = 0.9;
 
 /// Grey levels along an outline point's normal, every 0.5 px, enough to
 /// evaluate the step I(t + 1) - I(t - 1) for |t| <= search + 0.5.
@@ -156,50 +150,26 @@ int dominantPolarity(const RadialScanner& scanner, const std::vector<MappedPoint
 double mappedOutlineSupport(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,
                             std::size_t outline_points, double tolerance)
 {
-  return verifyMappedOutline(scanner, mapped, outline_points, tolerance, false).score;
+  if (mapped.empty() || outline_points == 0)
+    return 0.0;
+  const std::vector<std::uint8_t> on_edge = pointsOnEdges(scanner, mapped, tolerance);
+  return static_cast<double>(std::count(on_edge.begin(), on_edge.end(), 1)) / static_cast<double>(outline_points);
 }
 
-OutlineVerification verifyMappedOutline(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,
-                                        std::size_t outline_points, double tolerance, bool find_covered)
+std::vector<std::uint8_t> pointsOnEdges(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,
+                                        double tolerance)
 {
-  OutlineVerification verification;
-  if (mapped.empty() || outline_points == 0)
-    return verification;
+  std::vector<std::uint8_t> on_edge(mapped.size(), 0);
+  if (mapped.empty())
+    return on_edge;
   // A printed shape has one polarity all round: count edges of the majority's only.
   const int sign = dominantPolarity(scanner, mapped, tolerance);
-  std::vector<std::uint8_t> on_edge(mapped.size(), 0);
-  int found = 0;
   for (std::size_t i = 0; i < mapped.size(); ++i)
   {
     double offset = 0.0;
     on_edge[i] = nearestEdge(scanner, mapped[i], tolerance, sign, offset) ? 1 : 0;
-    found += on_edge[i];
   }
-  verification.score = static_cast<double>(found) / static_cast<double>(outline_points);
-  if (!find_covered || mapped.size() != outline_points)
-    return verification;
-  std::vector<std::uint8_t> covered = coveredPoints(scanner, mapped, on_edge, tolerance);
-  std::size_t visible = outline_points;
-  int found_visible = found;
-  for (std::size_t i = 0; i < mapped.size(); ++i)
-    if (covered[i] != 0)
-    {
-      --visible;
-      found_visible -= on_edge[i];  // an occluder's contour, not the object's outline
-    }
-  if (visible == outline_points || visible == 0)
-    return verification;
-  verification.covered_found = covered;
-  // Only an outline whose visible part lies on its edges may claim the rest
-  // covered: in clutter, a loose fit's missing points often lie over other
-  // shapes, which look like occluders.
-  const double visible_score = static_cast<double>(found_visible) / static_cast<double>(visible);
-  if (visible_score < kCoveredMinScore)
-    return verification;
-  verification.covered = std::move(covered);
-  verification.visible_share = static_cast<double>(visible) / static_cast<double>(outline_points);
-  verification.score = visible_score;
-  return verification;
+  return on_edge;
 }
 
 double passSearch(double search, int pass, int passes)
