@@ -35,8 +35,9 @@ struct CoverRule
 /// `tolerance` px. The object's inside and surround are read beside the
 /// points on edges (the median grey just beyond the tolerance on either
 /// side); a point without an edge is covered when the grey on both of its
-/// sides is alike and unlike both of them, in a run of such points at least
-/// rule.min_run of the outline long. None is covered when the inside and the
+/// sides is alike and unlike both of them, and a point on an edge when the
+/// grey beyond it is unlike both (an occluder's contour running along the
+/// outline), in a run of such points at least rule.min_run of the outline long. None is covered when the inside and the
 /// surround differ by less than the scanner's edge threshold, or too few
 /// points are on edges to read them.
 std::vector<std::uint8_t> coveredPoints(const RadialScanner& scanner, const std::vector<MappedPoint>& mapped,

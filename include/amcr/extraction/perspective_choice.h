@@ -5,6 +5,7 @@
 
 #include "amcr/base/affine.h"
 #include "amcr/base/homography.h"
+#include "amcr/extraction/outline_verification.h"
 #include "amcr/memory/prototype.h"
 #include "amcr/scan/radial_scan.h"
 
@@ -36,6 +37,9 @@ struct PerspectiveFit
   Homography table_to_image;    ///< the answer: `homography` when used, else the affine's lift
   double affine_support = 0.0;      ///< outline support of the affine at rule.tolerance
   double homography_support = 0.0;  ///< the same of the homography (0 unless its residual and conditioning passed)
+  /// The homography's verification (outline_verification.h; its score is
+  /// homography_support), when its residual and conditioning passed.
+  OutlineVerification verification;
   double affine_residual = 0.0;     ///< outlineResidual of the affine, px
   double homography_residual = 0.0; ///< the same of the homography (0 when not tried)
   double support = 0.0;         ///< outline support of the answer

@@ -7,7 +7,6 @@
 
 #include "amcr/base/homography.h"
 #include "amcr/base/parallel_for.h"
-#include "amcr/extraction/homography_fit.h"
 #include "amcr/extraction/outline_fit.h"
 #include "amcr/extraction/perspective_choice.h"
 #include "amcr/extraction/viewing_angle.h"
@@ -32,7 +31,6 @@ constexpr double kTurnedFitRatio = 0.6;
 // object's).
 constexpr double kBesideCovered = 0.03;
 constexpr double kRefitSlack = 0.05;
-constexpr double kLeadingScoreShare = 0.5;  // a fit scoring less is not refitted (as a leading hypothesis)
 
 /// A candidate for a prototype at a table -> image affine (score, support,
 /// correspondences, outline); false when the affine is out of bounds or the
@@ -67,18 +65,16 @@ bool describeObject(const ExtractionInput& in, int prototype, const Affine& tabl
   if (size < in.params.min_object_size)
     return false;
   candidate.score_tolerance = verifyTolerance(size, in.params.verify_tolerance, in.params.verify_relative_tolerance);
-  // The score of the visible outline (covered_outline.h).
-  const bool find_covered = in.params.min_visible_share < 1.0;
+  // The score of the visible outline (covered_outline.h); the homography's
+  // was verified when it was chosen, with the same tolerance and rule.
   OutlineVerification verification =
-      use_homography ? verifyOutline(p, in.scanner, perspective->table_to_image, candidate.score_tolerance,
-                                     in.params.part_shift, find_covered)
+      use_homography ? perspective->verification
                      : verifyOutline(p, in.scanner, table_to_image, candidate.score_tolerance, in.params.part_shift,
-                                     find_covered);
+                                     in.params.min_visible_share < 1.0);
   object.score = verification.score;
   object.visible_share = verification.visible_share;
+  object.covered = std::move(verification.covered);  // empty unless some are claimed
   candidate.covered_found = std::move(verification.covered_found);
-  if (std::find(verification.covered.begin(), verification.covered.end(), 1) != verification.covered.end())
-    object.covered = std::move(verification.covered);
   object.prototype_to_image = composeAffine(p.originalToTable(), table_to_image);
   object.image_to_prototype = composeAffine(image_to_table, p.tableToOriginal());
   object.homography_valid = use_homography;
@@ -126,7 +122,8 @@ std::vector<std::uint8_t> widened(const std::vector<std::uint8_t>& covered, std:
 void refitVisible(const ExtractionInput& in, Candidate& candidate)
 {
   const std::vector<std::uint8_t>& covered = candidate.covered_found;
-  if (covered.empty() || candidate.object.score < kLeadingScoreShare * in.params.decision_threshold)
+  // A fit that could not lead (kLeadingScoreRatio) is not worth a refit.
+  if (covered.empty() || candidate.object.score < kLeadingScoreRatio * in.params.decision_threshold)
     return;
   const int prototype = candidate.object.prototype_id;
   const Prototype& p = in.memory[prototype];

@@ -72,16 +72,19 @@ std::vector<std::uint8_t> coveredPoints(const RadialScanner& scanner, const std:
   std::vector<std::uint8_t> covered(mapped.size(), 0);
   if (mapped.empty() || on_edge.size() != mapped.size())
     return covered;
+  // The grey on either side of every point, read once; `sides` says where both are in the image.
+  std::vector<float> in(mapped.size(), 0.f), out(mapped.size(), 0.f);
+  std::vector<std::uint8_t> sides(mapped.size(), 0);
+  for (std::size_t i = 0; i < mapped.size(); ++i)
+    sides[i] = sideGrey(scanner, mapped[i], tolerance, -1, in[i]) && sideGrey(scanner, mapped[i], tolerance, +1, out[i]);
   std::vector<float> inside, surround;
   double threshold = 0.0;
   for (std::size_t i = 0; i < mapped.size(); ++i)
   {
-    float in = 0.f, out = 0.f;
-    if (on_edge[i] == 0 || !sideGrey(scanner, mapped[i], tolerance, -1, in) ||
-        !sideGrey(scanner, mapped[i], tolerance, +1, out))
+    if (on_edge[i] == 0 || sides[i] == 0)
       continue;
-    inside.push_back(in);
-    surround.push_back(out);
+    inside.push_back(in[i]);
+    surround.push_back(out[i]);
     threshold += scanner.threshold(static_cast<float>(mapped[i].image.x), static_cast<float>(mapped[i].image.y));
   }
   if (inside.empty() || static_cast<double>(inside.size()) < rule.min_on_edge * static_cast<double>(mapped.size()))
@@ -94,18 +97,17 @@ std::vector<std::uint8_t> coveredPoints(const RadialScanner& scanner, const std:
   const double like = rule.like * contrast;
   for (std::size_t i = 0; i < mapped.size(); ++i)
   {
-    float in = 0.f, out = 0.f;
-    if (!sideGrey(scanner, mapped[i], tolerance, -1, in) || !sideGrey(scanner, mapped[i], tolerance, +1, out))
+    if (sides[i] == 0)
       continue;
-    const bool third_outside = std::abs(out - object_surround) > like && std::abs(out - object_inside) > like;
+    const bool third_outside = std::abs(out[i] - object_surround) > like && std::abs(out[i] - object_inside) > like;
     if (on_edge[i] != 0)
       // The edge of an occluder's contour that runs along the outline: a
       // third surface beyond it. The object's own outline lies beneath.
       covered[i] = third_outside;
     else
       // One surface across the point, neither the object's nor its surround's.
-      covered[i] = std::abs(in - out) <= like && std::abs(in - object_inside) > like &&
-                   std::abs(out - object_surround) > like;
+      covered[i] = std::abs(in[i] - out[i]) <= like && std::abs(in[i] - object_inside) > like &&
+                   std::abs(out[i] - object_surround) > like;
   }
   dropShortRuns(covered, static_cast<std::size_t>(std::ceil(rule.min_run * static_cast<double>(mapped.size()))));
   return covered;

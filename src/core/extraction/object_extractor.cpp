@@ -20,7 +20,6 @@ namespace
 {
 constexpr int kMaxLeadingHypotheses = 3;           // hypotheses whose poses are injected as M-particles
 constexpr double kVerificationGain = 4.0;          // log-weight per unit of outline score above 0.5 (V-resampling)
-constexpr double kLeadingScoreRatio = 0.5;         // a leading hypothesis scores at least this share of the threshold
 constexpr std::size_t kMaxSeedPlaces = 12;         // places of the image's candidates V-resampling seeds at
 
 // Attention feedback from the verification: a converged V-particle whose

@@ -52,8 +52,8 @@ PerspectiveFit choosePerspective(const Prototype& prototype, const RadialScanner
   if (!homographyWellConditioned(fit.homography, box, rule.max_scale, rule.max_depth_ratio) ||
       !nearAffine(fit.homography, table_to_image, box, rule.max_corner_shift))
     return fit;
-  fit.homography_support =
-      verifyOutline(prototype, scanner, fit.homography, rule.tolerance, rule.part_shift, rule.find_covered).score;
+  fit.verification = verifyOutline(prototype, scanner, fit.homography, rule.tolerance, rule.part_shift, rule.find_covered);
+  fit.homography_support = fit.verification.score;
   if (fit.homography_support < affine_support)
     return fit;
   fit.used = true;

@@ -9,6 +9,7 @@ namespace extraction_steps
 {
 constexpr double kKeepTrackRatio = 0.65;  // a tracked object stays at this share of the decision threshold
 constexpr int kRivalGraceFrames = 10;      // reports in a row a track may fail the rival check's hysteresis
+constexpr double kLeadingScoreRatio = 0.5;  // a leading hypothesis scores at least this share of the threshold
 // Outlines overlapping more are one object: the better is kept. Below a half
 // (an elongated part found twice, slid along its axis, overlaps itself by a
 // third); touching copies overlap by next to nothing.
