@@ -213,6 +213,15 @@ TEST(PartlyHidden, AHalfCoveredDiscIsNotAnApple)
 {
   constexpr int kFrames = 30;
   const amcr::Affine truth = amcr_test::makeAffine(amcr_test::prototypeCentre(), {300, 250}, 0.3, 0.8, 0.8, 0.0);
+  const auto apples = [&](const std::vector<cv::Mat>& frames, const amcr::Params& p) {
+    amcr::Recognizer recognizer(p, amcr_test::memoryWithApple());
+    int count = 0;
+    for (const cv::Mat& frame : frames)
+      for (const amcr::RecognizedObject& o : recognizer.step(frame).objects)
+        count += o.label == "apple";
+    return count;
+  };
+  int unchecked_total = 0;
   for (std::uint64_t seed : amcr_test::firstOf<std::uint64_t>({1, 2, 3}, 1))
   {
     for (const double share : {0.5, 0.3})
@@ -224,16 +233,21 @@ TEST(PartlyHidden, AHalfCoveredDiscIsNotAnApple)
       const std::vector<cv::Point> occluder = occluderOver(mask, -M_PI / 2 + 0.3, share);
       for (std::size_t k = 0; k < frames.size(); ++k)
         drawOccluder(frames[k], occluder, 900 + k);
-      amcr::Recognizer recognizer(params(seed), amcr_test::memoryWithApple());
-      int apples = 0;
-      for (const cv::Mat& frame : frames)
-        for (const amcr::RecognizedObject& o : recognizer.step(frame).objects)
-          apples += o.label == "apple";
+      // The control: nothing checks what shows, any share of it may be covered.
+      amcr::Params unchecked = params(seed);
+      unchecked.rival_part_support = 0.0;
+      unchecked.min_visible_share = 0.0;
+      const int reports = apples(frames, params(seed));
+      const int unchecked_reports = apples(frames, unchecked);
+      unchecked_total += unchecked_reports;
       std::cout << "[ hidden   ] seed " << seed << ": a disc " << share * 100 << " % covered reported as the apple in "
-                << apples << " of " << kFrames << " frames" << std::endl;
-      EXPECT_EQ(apples, 0) << "seed " << seed << ": a disc " << share * 100 << " % covered was taken for the apple";
+                << reports << " of " << kFrames << " frames (" << unchecked_reports
+                << " without the rival check and the visible share)" << std::endl;
+      EXPECT_EQ(reports, 0) << "seed " << seed << ": a disc " << share * 100 << " % covered was taken for the apple";
     }
   }
+  EXPECT_GT(unchecked_total, 0) << "without the checks the covered disc was never taken for the apple either: the "
+                                   "scene does not test them";
 }
 
 // An occluder alone, flat or striped, over clutter: no object.
